@@ -1,7 +1,14 @@
 #![doc = include_str!("../README.md")]
 #![cfg_attr(not(feature = "std"), no_std)]
 
+#[cfg(feature = "conformance")]
+pub mod conformance;
 mod error;
 pub mod format;
+pub mod reference;
+mod state;
+mod velocity;
 
 pub use error::Error;
+pub use state::{Limits, ProfileGenerator, State, States, StopKind};
+pub use velocity::{VelocityContouring, VelocityParameters};

@@ -1,0 +1,127 @@
+//! Continuous-time `f64` models: the yardstick the exact generators are tested against, and a
+//! way to plan in floats. Nothing here is on a per-cycle path of the exact generators.
+//!
+//! Time is in cycles and distances in counts, so a continuous model's velocity at time `n` is
+//! comparable with the exact generator's state after `n` steps.
+
+// Without `std`, `abs`, `signum` and (in later models) `sqrt` come from `num_traits::Float`
+// through libm; with `std` the inherent methods win and the import goes unused.
+#[allow(unused_imports)]
+use num_traits::Float;
+
+use crate::StopKind;
+
+/// Continuous-time velocity contouring with the rules of SPEC §6: the velocity moves toward the
+/// target at the deceleration while it moves toward zero, switching to the acceleration at the
+/// instant it crosses zero.
+///
+/// ```
+/// use profilegen::reference::VelocityContouringF64;
+/// let mut model = VelocityContouringF64::new(2.0, 0.5, 0.0);
+/// model.advance(3.0);
+/// assert_eq!(model.velocity(), 1.5);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VelocityContouringF64 {
+    position: f64,
+    velocity: f64,
+    target_velocity: f64,
+    acceleration: f64,
+    deceleration: f64,
+}
+
+impl VelocityContouringF64 {
+    /// At rest at position 0, with a target velocity (counts/cycle), acceleration and deceleration
+    /// (counts/cycle², deceleration 0 meaning "use the acceleration").
+    pub fn new(target_velocity: f64, acceleration: f64, deceleration: f64) -> Self {
+        Self {
+            position: 0.0,
+            velocity: 0.0,
+            target_velocity,
+            acceleration,
+            deceleration,
+        }
+    }
+
+    /// Sets the target velocity, counts/cycle.
+    pub fn set_velocity(&mut self, target_velocity: f64) {
+        self.target_velocity = target_velocity;
+    }
+
+    /// Sets the acceleration, counts/cycle².
+    pub fn set_acceleration(&mut self, acceleration: f64) {
+        self.acceleration = acceleration;
+    }
+
+    /// Sets the deceleration, counts/cycle² (0: use the acceleration).
+    pub fn set_deceleration(&mut self, deceleration: f64) {
+        self.deceleration = deceleration;
+    }
+
+    /// A smooth stop (target zero) or an abrupt one (velocity and target zero at once).
+    pub fn stop(&mut self, kind: StopKind) {
+        self.target_velocity = 0.0;
+        if kind == StopKind::Abrupt {
+            self.velocity = 0.0;
+        }
+    }
+
+    /// The velocity, counts/cycle.
+    pub fn velocity(&self) -> f64 {
+        self.velocity
+    }
+
+    /// The position, counts.
+    pub fn position(&self) -> f64 {
+        self.position
+    }
+
+    /// The rate that governs the motion now: the deceleration toward zero, else the acceleration.
+    pub fn active_rate(&self) -> f64 {
+        if self.toward_zero() {
+            self.effective_deceleration()
+        } else {
+            self.acceleration
+        }
+    }
+
+    fn effective_deceleration(&self) -> f64 {
+        if self.deceleration == 0.0 {
+            self.acceleration
+        } else {
+            self.deceleration
+        }
+    }
+
+    fn toward_zero(&self) -> bool {
+        let (v, target) = (self.velocity, self.target_velocity);
+        v != 0.0 && (target.signum() != v.signum() || target == 0.0 || target.abs() < v.abs())
+    }
+
+    /// Advances `cycles` cycles of continuous time.
+    pub fn advance(&mut self, cycles: f64) {
+        let mut remaining = cycles;
+        while remaining > 0.0 && self.velocity != self.target_velocity {
+            let direction = (self.target_velocity - self.velocity).signum();
+            let rate = self.active_rate();
+            if rate <= 0.0 {
+                break;
+            }
+            // The next event: zero crossing (when heading for the other side), else the target.
+            let crossing = self.toward_zero()
+                && (self.target_velocity == 0.0
+                    || self.target_velocity.signum() != self.velocity.signum());
+            let event_velocity = if crossing { 0.0 } else { self.target_velocity };
+            let time_to_event = (event_velocity - self.velocity).abs() / rate;
+            let dt = time_to_event.min(remaining);
+            self.position += self.velocity * dt + 0.5 * direction * rate * dt * dt;
+            self.velocity = if dt == time_to_event {
+                event_velocity
+            } else {
+                self.velocity + direction * rate * dt
+            };
+            remaining -= dt;
+        }
+        self.position += self.velocity * remaining.max(0.0);
+    }
+}

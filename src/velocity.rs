@@ -1,0 +1,209 @@
+//! Juno velocity contouring (SPEC §6, Juno User Guide §11 and Figure 11-1).
+
+use fixed::types::I32F32;
+
+use crate::format::juno::{Acceleration, TargetVelocity};
+use crate::state::{Limits, ProfileGenerator, State, StopKind};
+use crate::Error;
+
+/// The profile parameters of velocity contouring, in Juno register formats.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct VelocityParameters {
+    /// Target velocity, counts/cycle; its sign is the direction of motion.
+    pub velocity: TargetVelocity,
+    /// Acceleration, counts/cycle²: the rate away from zero velocity. Must be non-zero.
+    pub acceleration: Acceleration,
+    /// Deceleration, counts/cycle²: the rate toward zero velocity; zero means "use the
+    /// acceleration".
+    pub deceleration: Acceleration,
+}
+
+/// The Juno's velocity-contouring profile generator.
+///
+/// Per cycle the velocity moves toward the target by at most the active rate and never past it.
+/// The rate is the deceleration while the velocity moves toward zero (the target is smaller in
+/// magnitude with the same sign, or of the opposite sign); the cycle that reaches or crosses zero
+/// is taken at the deceleration, and from the next cycle on the axis accelerates away from zero at
+/// the acceleration. Every parameter applies immediately when set.
+///
+/// ```
+/// use profilegen::format::juno::{Acceleration, TargetVelocity};
+/// use profilegen::{ProfileGenerator, VelocityContouring, VelocityParameters};
+///
+/// let mut axis = VelocityContouring::new(VelocityParameters {
+///     velocity: TargetVelocity::from_num(2.0)?,
+///     acceleration: Acceleration::from_num(0.5)?,
+///     deceleration: Acceleration::ZERO, // use the acceleration
+/// })?;
+/// let velocities: Vec<f64> = axis.states().take(5).map(|s| s.velocity.to_num()).collect();
+/// assert_eq!(velocities, [0.5, 1.0, 1.5, 2.0, 2.0]);
+/// # Ok::<(), profilegen::Error>(())
+/// ```
+#[derive(Debug, Clone)]
+pub struct VelocityContouring {
+    /// Target velocity as I32F32 bits (the 16.16 register shifted left 16).
+    target_velocity: i64,
+    /// Acceleration as I32F32 bits (the 8.24 register shifted left 8).
+    acceleration: i64,
+    /// Deceleration as I32F32 bits, already resolved: a zero register means the acceleration.
+    deceleration: i64,
+    /// The register as set, so that a later acceleration change re-resolves a zero deceleration.
+    deceleration_register: Acceleration,
+    state: State,
+    /// An abrupt stop waits for the next cycle.
+    abrupt_pending: bool,
+    /// The last cycle was an abrupt stop (reported by [`ProfileGenerator::limits`]).
+    last_was_abrupt: bool,
+}
+
+/// The 16.16 velocity register as I32F32 bits.
+const fn velocity_bits(velocity: TargetVelocity) -> i64 {
+    (velocity.to_bits() as i64) << 16
+}
+
+/// The 8.24 rate register as I32F32 bits.
+const fn rate_bits(rate: Acceleration) -> i64 {
+    (rate.to_bits() as i64) << 8
+}
+
+fn check_acceleration(acceleration: Acceleration) -> Result<(), Error> {
+    if acceleration.is_zero() {
+        return Err(Error::Zero {
+            parameter: "acceleration",
+            range: Acceleration::RANGE,
+        });
+    }
+    Ok(())
+}
+
+impl VelocityContouring {
+    /// A generator at rest at position 0 with these parameters (it starts moving on the first
+    /// step if the velocity is non-zero).
+    ///
+    /// # Errors
+    /// [`Error::Zero`] if the acceleration is zero.
+    pub fn new(parameters: VelocityParameters) -> Result<Self, Error> {
+        Self::with_position(parameters, I32F32::ZERO)
+    }
+
+    /// As [`Self::new`], at rest at `position`.
+    ///
+    /// # Errors
+    /// [`Error::Zero`] if the acceleration is zero.
+    pub fn with_position(parameters: VelocityParameters, position: I32F32) -> Result<Self, Error> {
+        check_acceleration(parameters.acceleration)?;
+        let mut generator = Self {
+            target_velocity: velocity_bits(parameters.velocity),
+            acceleration: rate_bits(parameters.acceleration),
+            deceleration: 0,
+            deceleration_register: parameters.deceleration,
+            state: State::at_rest(position),
+            abrupt_pending: false,
+            last_was_abrupt: false,
+        };
+        generator.resolve_deceleration();
+        Ok(generator)
+    }
+
+    /// Sets the target velocity; applies from the next cycle.
+    pub fn set_velocity(&mut self, velocity: TargetVelocity) {
+        self.target_velocity = velocity_bits(velocity);
+    }
+
+    /// Sets the acceleration; applies from the next cycle.
+    ///
+    /// # Errors
+    /// [`Error::Zero`] if it is zero (nothing changes).
+    pub fn set_acceleration(&mut self, acceleration: Acceleration) -> Result<(), Error> {
+        check_acceleration(acceleration)?;
+        self.acceleration = rate_bits(acceleration);
+        self.resolve_deceleration();
+        Ok(())
+    }
+
+    /// Sets the deceleration (zero: use the acceleration); applies from the next cycle on which
+    /// the axis moves toward zero velocity.
+    pub fn set_deceleration(&mut self, deceleration: Acceleration) {
+        self.deceleration_register = deceleration;
+        self.resolve_deceleration();
+    }
+
+    /// The present parameters, as registers (the velocity is zero after a stop).
+    pub fn parameters(&self) -> VelocityParameters {
+        VelocityParameters {
+            // Both were built from these registers by exact shifts, so they convert back exactly.
+            velocity: TargetVelocity::from_bits((self.target_velocity >> 16) as i32)
+                .unwrap_or(TargetVelocity::ZERO),
+            acceleration: Acceleration::from_bits((self.acceleration >> 8) as u32)
+                .unwrap_or(Acceleration::ZERO),
+            deceleration: self.deceleration_register,
+        }
+    }
+
+    fn resolve_deceleration(&mut self) {
+        self.deceleration = if self.deceleration_register.is_zero() {
+            self.acceleration
+        } else {
+            rate_bits(self.deceleration_register)
+        };
+    }
+}
+
+impl ProfileGenerator for VelocityContouring {
+    #[inline]
+    fn step(&mut self) -> State {
+        let velocity = self.state.velocity.to_bits();
+        self.last_was_abrupt = self.abrupt_pending;
+        let next = if self.abrupt_pending {
+            self.abrupt_pending = false;
+            0
+        } else {
+            let target = self.target_velocity;
+            // Moving toward zero: the target is smaller with the same sign, or of the other sign
+            // (zero included). That cycle, even if it crosses zero, is taken at the deceleration.
+            let toward_zero = velocity != 0
+                && (target.signum() != velocity.signum() || target.abs() < velocity.abs());
+            let rate = if toward_zero {
+                self.deceleration
+            } else {
+                self.acceleration
+            };
+            // Never past the target. |velocity| < 2^47 and rate < 2^39: no overflow.
+            if target > velocity {
+                (velocity + rate).min(target)
+            } else {
+                (velocity - rate).max(target)
+            }
+        };
+        self.state = self.state.advanced(I32F32::from_bits(next));
+        self.state
+    }
+
+    fn state(&self) -> State {
+        self.state
+    }
+
+    fn is_complete(&self) -> bool {
+        self.state.velocity == I32F32::ZERO && self.target_velocity == 0 && !self.abrupt_pending
+    }
+
+    fn stop(&mut self, kind: StopKind) {
+        // Either stop zeroes the target velocity register: a restart needs a new velocity.
+        self.target_velocity = 0;
+        if kind == StopKind::Abrupt {
+            self.abrupt_pending = true;
+        }
+    }
+
+    fn limits(&self) -> Limits {
+        Limits {
+            max_velocity: Some(I32F32::from_bits(velocity_bits(TargetVelocity::MAX))),
+            max_speed_up: Some(I32F32::from_bits(self.acceleration)),
+            // Toward zero, and the cycle that crosses it, at the deceleration.
+            max_slow_down: Some(I32F32::from_bits(self.deceleration)),
+            max_acceleration: None,
+            max_jerk: None,
+            exempt: self.last_was_abrupt,
+        }
+    }
+}
