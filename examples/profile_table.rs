@@ -18,9 +18,11 @@
 use std::io::{self, BufWriter, Write};
 use std::process::ExitCode;
 
+use fixed::types::I32F0;
 use profilegen::format::juno::{Acceleration, TargetVelocity};
 use profilegen::{
-    Error, ProfileGenerator, State, StopKind, VelocityContouring, VelocityParameters,
+    Error, ProfileGenerator, State, StopKind, Trapezoidal, TrapezoidalParameters,
+    VelocityContouring, VelocityParameters,
 };
 
 /// The longest run without `--cycles`.
@@ -105,6 +107,36 @@ impl Axis for VelocityContouring {
     }
 }
 
+impl Axis for Trapezoidal {
+    fn apply(&mut self, command: Command) -> Result<(), Error> {
+        match command {
+            Command::Destination(x) => self.set_destination(destination(x)?),
+            Command::Velocity(v) => self.set_max_velocity(TargetVelocity::from_num(v)?)?,
+            Command::Acceleration(a) => self.set_acceleration(Acceleration::from_num(a)?)?,
+            Command::Deceleration(d) => self.set_deceleration(Acceleration::from_num(d)?),
+            Command::StartVelocity(s) => self.set_start_velocity(TargetVelocity::from_num(s)?)?,
+            Command::Stop(kind) => self.stop(kind),
+            Command::Jerk(_) => {
+                return Err(Error::Refused {
+                    parameter: "jerk",
+                    reason: "in trapezoidal mode",
+                })
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A destination in counts: a signed 32-bit integer, rounded to nearest (ties to even).
+fn destination(value: f64) -> Result<i32, Error> {
+    I32F0::checked_from_num(value)
+        .map(I32F0::to_num)
+        .ok_or(Error::OutOfRange {
+            parameter: "destination",
+            range: "-2147483648 … 2147483647 counts",
+        })
+}
+
 /// Converts an option's value to a register, naming the option in the error.
 fn register<R>(
     option: &str,
@@ -135,8 +167,43 @@ fn build(options: &Options) -> Result<Box<dyn Axis>, String> {
                 .map_err(|error| format!("--acceleration: {error}"))?;
             Ok(Box::new(axis))
         }
-        Mode::Trapezoidal | Mode::Scurve => Err("MODE: not implemented yet".to_string()),
+        Mode::Trapezoidal => {
+            let parameters = TrapezoidalParameters {
+                destination: register("--destination", options.destination, destination)?,
+                max_velocity: register("--velocity", options.velocity, TargetVelocity::from_num)?,
+                acceleration: register(
+                    "--acceleration",
+                    options.acceleration,
+                    Acceleration::from_num,
+                )?,
+                deceleration: register(
+                    "--deceleration",
+                    options.deceleration,
+                    Acceleration::from_num,
+                )?,
+                start_velocity: register(
+                    "--start-velocity",
+                    options.start_velocity,
+                    TargetVelocity::from_num,
+                )?,
+            };
+            let axis = Trapezoidal::new(parameters)
+                .map_err(|error| format!("{}: {error}", option_of(&error)))?;
+            Ok(Box::new(axis))
+        }
+        Mode::Scurve => Err("MODE: not implemented yet".to_string()),
     }
+}
+
+/// The command-line option that sets the parameter an error names.
+fn option_of(error: &Error) -> String {
+    let parameter = match *error {
+        Error::OutOfRange { parameter, .. }
+        | Error::NotFinite { parameter, .. }
+        | Error::Zero { parameter, .. } => parameter,
+        _ => "value",
+    };
+    format!("--{}", parameter.replace(' ', "-"))
 }
 
 /// Checks that an event's value fits its register in this mode (so a bad value is an argument

@@ -7,8 +7,10 @@ mod error;
 pub mod format;
 pub mod reference;
 mod state;
+mod trapezoidal;
 mod velocity;
 
 pub use error::Error;
 pub use state::{Limits, ProfileGenerator, State, States, StopKind};
+pub use trapezoidal::{Trapezoidal, TrapezoidalParameters};
 pub use velocity::{VelocityContouring, VelocityParameters};

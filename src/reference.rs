@@ -125,3 +125,40 @@ impl VelocityContouringF64 {
         self.position += self.velocity * remaining.max(0.0);
     }
 }
+
+/// The continuous-time optimal duration, in cycles, of a rest-to-rest trapezoidal move of
+/// `distance` counts (> 0) with maximum velocity `max_velocity`, acceleration `acceleration`,
+/// deceleration `deceleration` (counts/cycle, counts/cycle², both > 0), where the move may start
+/// by jumping to `start_velocity` (0 … `max_velocity`).
+///
+/// ```
+/// use profilegen::reference::trapezoidal_duration;
+/// // Triangle: 2·√(distance / a) when a = d and the maximum velocity is not reached.
+/// assert!((trapezoidal_duration(100.0, 50.0, 1.0, 1.0, 0.0) - 20.0).abs() < 1e-12);
+/// ```
+pub fn trapezoidal_duration(
+    distance: f64,
+    max_velocity: f64,
+    acceleration: f64,
+    deceleration: f64,
+    start_velocity: f64,
+) -> f64 {
+    let speeding_up =
+        (max_velocity * max_velocity - start_velocity * start_velocity) / (2.0 * acceleration);
+    let slowing_down = max_velocity * max_velocity / (2.0 * deceleration);
+    if speeding_up + slowing_down <= distance {
+        return (max_velocity - start_velocity) / acceleration
+            + max_velocity / deceleration
+            + (distance - speeding_up - slowing_down) / max_velocity;
+    }
+    // No cruise: the peak velocity p solves (p² − s²)/2a + p²/2d = distance.
+    let peak = ((distance + start_velocity * start_velocity / (2.0 * acceleration))
+        / (1.0 / (2.0 * acceleration) + 1.0 / (2.0 * deceleration)))
+        .sqrt();
+    if peak >= start_velocity {
+        (peak - start_velocity) / acceleration + peak / deceleration
+    } else {
+        // Too short to use the whole starting velocity: jump to the velocity that just stops.
+        (2.0 * distance / deceleration).sqrt()
+    }
+}

@@ -91,3 +91,95 @@ pub fn velocity_script() -> impl Strategy<Value = VelocityScript> {
     )
         .prop_map(|(initial, commands)| VelocityScript { initial, commands })
 }
+
+use profilegen::TrapezoidalParameters;
+
+/// The longest move, in cycles of the continuous-time optimum, the trapezoidal strategies make:
+/// parameters are drawn so that even the slowest combination stays below it.
+pub const TRAPEZOIDAL_CYCLES: f64 = 200_000.0;
+
+/// A raw value log-uniform in `low ..= high`.
+pub fn log_uniform_between(low: u64, high: u64) -> impl Strategy<Value = u64> {
+    let low = low.max(1);
+    log_uniform(high)
+        .prop_map(move |bits| bits.max(low))
+        .prop_filter("in range", move |bits| *bits <= high)
+}
+
+/// A trapezoidal move from rest at 0, spanning the register ranges: distances from 1 count to
+/// 2^31 − 1, velocities from 1/65536 to 32767, rates across 8.24, with and without a separate
+/// deceleration and a starting velocity. Velocity and rates have lower bounds that depend on the
+/// distance, so that no move lasts much more than [`TRAPEZOIDAL_CYCLES`].
+pub fn trapezoidal_move() -> impl Strategy<Value = TrapezoidalParameters> {
+    (log_uniform(i32::MAX as u64), any::<bool>())
+        .prop_flat_map(|(distance, negative)| {
+            let counts = distance as f64;
+            // Cruise time ≤ limit: v ≥ distance / limit.
+            let min_velocity = ((counts / TRAPEZOIDAL_CYCLES) * 65_536.0).ceil() as u64;
+            // Triangle time 2·√(distance/a) ≤ limit: a ≥ 4·distance / limit².
+            let min_rate = ((4.0 * counts / (TRAPEZOIDAL_CYCLES * TRAPEZOIDAL_CYCLES)) * 16_777_216.0).ceil() as u64;
+            (
+                Just(if negative { -(distance as i64) } else { distance as i64 }),
+                log_uniform_between(min_velocity, i32::MAX as u64),
+                log_uniform_between(min_rate, Acceleration::MAX_BITS as u64),
+                prop_oneof![1 => Just(0u64), 2 => log_uniform_between(min_rate, Acceleration::MAX_BITS as u64)],
+                prop_oneof![2 => Just(0.0f64), 1 => 0.0f64..=1.0],
+            )
+        })
+        .prop_map(|(destination, velocity, acceleration, deceleration, start_fraction)| {
+            let start = (velocity as f64 * start_fraction) as i32;
+            TrapezoidalParameters {
+                destination: destination as i32,
+                max_velocity: TargetVelocity::from_bits(velocity as i32).unwrap(),
+                acceleration: Acceleration::from_bits(acceleration as u32).unwrap(),
+                deceleration: Acceleration::from_bits(deceleration as u32).unwrap(),
+                start_velocity: TargetVelocity::from_bits(start).unwrap(),
+            }
+        })
+}
+
+/// A command given to a trapezoidal move in motion.
+#[derive(Debug, Clone, Copy)]
+pub enum TrapezoidalCommand {
+    /// New destination.
+    Destination(i32),
+    /// New maximum velocity.
+    MaxVelocity(TargetVelocity),
+    /// New acceleration.
+    Acceleration(Acceleration),
+    /// New deceleration.
+    Deceleration(Acceleration),
+    /// A stop.
+    Stop(StopKind),
+}
+
+/// Moderate parameters for scripts of changes in motion (so that every script comes to rest in
+/// a bounded number of cycles).
+pub fn moderate_trapezoidal() -> impl Strategy<Value = TrapezoidalParameters> {
+    (
+        -100_000i32..100_000,
+        (1u32 << 16)..(200 << 16),
+        (1u32 << 16)..(4u32 << 24),
+        prop_oneof![Just(0u32), (1u32 << 16)..(4u32 << 24)],
+    )
+        .prop_map(|(destination, velocity, acceleration, deceleration)| {
+            TrapezoidalParameters {
+                destination,
+                max_velocity: TargetVelocity::from_bits(velocity as i32).unwrap(),
+                acceleration: Acceleration::from_bits(acceleration).unwrap(),
+                deceleration: Acceleration::from_bits(deceleration).unwrap(),
+                start_velocity: TargetVelocity::ZERO,
+            }
+        })
+}
+
+pub fn trapezoidal_command() -> impl Strategy<Value = TrapezoidalCommand> {
+    prop_oneof![
+        4 => (-100_000i32..100_000).prop_map(TrapezoidalCommand::Destination),
+        2 => moderate_trapezoidal().prop_map(|p| TrapezoidalCommand::MaxVelocity(p.max_velocity)),
+        2 => moderate_trapezoidal().prop_map(|p| TrapezoidalCommand::Acceleration(p.acceleration)),
+        2 => moderate_trapezoidal().prop_map(|p| TrapezoidalCommand::Deceleration(p.deceleration)),
+        1 => Just(TrapezoidalCommand::Stop(StopKind::Smooth)),
+        1 => Just(TrapezoidalCommand::Stop(StopKind::Abrupt)),
+    ]
+}
