@@ -20,9 +20,10 @@ use std::process::ExitCode;
 
 use fixed::types::I32F0;
 use profilegen::format::juno::{Acceleration, TargetVelocity};
+use profilegen::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
 use profilegen::{
-    Error, ProfileGenerator, State, StopKind, Trapezoidal, TrapezoidalParameters,
-    VelocityContouring, VelocityParameters,
+    Error, ProfileGenerator, SCurve, ScurveParameters, State, StopKind, Trapezoidal,
+    TrapezoidalParameters, VelocityContouring, VelocityParameters,
 };
 
 /// The longest run without `--cycles`.
@@ -127,6 +128,25 @@ impl Axis for Trapezoidal {
     }
 }
 
+impl Axis for SCurve {
+    fn apply(&mut self, command: Command) -> Result<(), Error> {
+        match command {
+            Command::Destination(x) => self.set_destination(Destination::from_num(x)?),
+            Command::Velocity(v) => self.set_max_velocity(MaxVelocity::from_num(v)?),
+            Command::Acceleration(a) => self.set_max_acceleration(ScurveAcceleration::from_num(a)?),
+            Command::Jerk(j) => self.set_jerk(Jerk::from_num(j)?),
+            Command::Stop(kind) => {
+                self.stop(kind);
+                Ok(())
+            }
+            other => Err(Error::Refused {
+                parameter: other.name(),
+                reason: "in S-curve mode",
+            }),
+        }
+    }
+}
+
 /// A destination in counts: a signed 32-bit integer, rounded to nearest (ties to even).
 fn destination(value: f64) -> Result<i32, Error> {
     I32F0::checked_from_num(value)
@@ -191,7 +211,21 @@ fn build(options: &Options) -> Result<Box<dyn Axis>, String> {
                 .map_err(|error| format!("{}: {error}", option_of(&error)))?;
             Ok(Box::new(axis))
         }
-        Mode::Scurve => Err("MODE: not implemented yet".to_string()),
+        Mode::Scurve => {
+            let parameters = ScurveParameters {
+                destination: register("--destination", options.destination, Destination::from_num)?,
+                max_velocity: register("--velocity", options.velocity, MaxVelocity::from_num)?,
+                max_acceleration: register(
+                    "--acceleration",
+                    options.acceleration,
+                    ScurveAcceleration::from_num,
+                )?,
+                jerk: register("--jerk", options.jerk, Jerk::from_num)?,
+            };
+            let axis = SCurve::new(parameters)
+                .map_err(|error| format!("{}: {error}", option_of(&error)))?;
+            Ok(Box::new(axis))
+        }
     }
 }
 

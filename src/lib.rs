@@ -6,11 +6,13 @@ pub mod conformance;
 mod error;
 pub mod format;
 pub mod reference;
+mod scurve;
 mod state;
 mod trapezoidal;
 mod velocity;
 
 pub use error::Error;
+pub use scurve::{SCurve, ScurveParameters, ScurvePlan};
 pub use state::{Limits, ProfileGenerator, State, States, StopKind};
 pub use trapezoidal::{Trapezoidal, TrapezoidalParameters};
 pub use velocity::{VelocityContouring, VelocityParameters};

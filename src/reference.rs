@@ -162,3 +162,59 @@ pub fn trapezoidal_duration(
         (2.0 * distance / deceleration).sqrt()
     }
 }
+
+/// The continuous-time optimal duration, in cycles, of a symmetric rest-to-rest double-S
+/// (jerk-limited) move of `distance` counts with maximum velocity, acceleration and jerk (per
+/// cycle, per cycle², per cycle³; all > 0): the profile the MC1451A S-curve approximates.
+///
+/// ```
+/// use profilegen::reference::scurve_duration;
+/// // Jerk-limited only: distance = 2·j·t³ per half, so t = (d / 2j)^(1/3) and T = 4t.
+/// assert!((scurve_duration(2.0, 1e9, 1e9, 1.0) - 4.0).abs() < 1e-9);
+/// ```
+pub fn scurve_duration(distance: f64, max_velocity: f64, max_acceleration: f64, jerk: f64) -> f64 {
+    let (v, a, j) = (max_velocity, max_acceleration, jerk);
+    // Time to reach v from rest (and, mirrored, to stop from it), and the distance both take.
+    let to_max_velocity = if v * j >= a * a {
+        v / a + a / j
+    } else {
+        2.0 * (v / j).sqrt()
+    };
+    let ramps = v * to_max_velocity;
+    if distance >= ramps {
+        return 2.0 * to_max_velocity + (distance - ramps) / v;
+    }
+    // The maximum velocity is not reached. With the acceleration limit reached, the peak w solves
+    // w·(w/a + a/j) = distance; that needs w ≥ a²/j, i.e. distance ≥ 2a³/j².
+    if distance >= 2.0 * a * a * a / (j * j) {
+        let peak = (-(a / j) + ((a / j) * (a / j) + 4.0 * distance / a).sqrt()) * a / 2.0;
+        return 2.0 * (peak / a + a / j);
+    }
+    4.0 * (distance / (2.0 * j)).cbrt()
+}
+
+/// The phase durations (in cycles, real) of that optimal profile: `(jerk phase, constant
+/// acceleration phase, cruise)`; the move is I = III = V = VII = jerk phase, II = VI = constant
+/// acceleration, IV = cruise.
+pub fn scurve_phases(
+    distance: f64,
+    max_velocity: f64,
+    max_acceleration: f64,
+    jerk: f64,
+) -> (f64, f64, f64) {
+    let (v, a, j) = (max_velocity, max_acceleration, jerk);
+    let (jerk_time, constant_time) = if v * j >= a * a {
+        (a / j, v / a - a / j)
+    } else {
+        ((v / j).sqrt(), 0.0)
+    };
+    let ramps = v * (2.0 * jerk_time + constant_time);
+    if distance >= ramps {
+        return (jerk_time, constant_time, (distance - ramps) / v);
+    }
+    if distance >= 2.0 * a * a * a / (j * j) {
+        let peak = (-(a / j) + ((a / j) * (a / j) + 4.0 * distance / a).sqrt()) * a / 2.0;
+        return (a / j, peak / a - a / j, 0.0);
+    }
+    ((distance / (2.0 * j)).cbrt(), 0.0, 0.0)
+}

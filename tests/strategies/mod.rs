@@ -183,3 +183,47 @@ pub fn trapezoidal_command() -> impl Strategy<Value = TrapezoidalCommand> {
         1 => Just(TrapezoidalCommand::Stop(StopKind::Abrupt)),
     ]
 }
+
+use profilegen::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
+use profilegen::ScurveParameters;
+
+/// The longest S-curve move (cycles of the continuous-time optimum) the strategy makes.
+pub const SCURVE_CYCLES: f64 = 200_000.0;
+
+/// An S-curve move from rest at 0 across the register ranges: jerk from the smallest raw value
+/// up, distances from 1 count to 2^30, accelerations and velocities over their ranges — with the
+/// lower bounds on jerk, acceleration and velocity that keep the continuous optimum below
+/// [`SCURVE_CYCLES`] (so small jerks come with short moves).
+pub fn scurve_move() -> impl Strategy<Value = ScurveParameters> {
+    (log_uniform((1 << 30) - 1), any::<bool>())
+        .prop_flat_map(|(distance, negative)| {
+            let counts = distance as f64;
+            let t = SCURVE_CYCLES;
+            // Jerk-limited: T = (32·d/j)^(1/3) ≤ t ⇒ j ≥ 32·d/t³. Acceleration-limited:
+            // T ≈ 2√(d/a) ⇒ a ≥ 4d/t². Cruise: v ≥ d/t.
+            let min_jerk = (32.0 * counts / (t * t * t) * 4_294_967_296.0).ceil() as u64;
+            let min_acceleration = (4.0 * counts / (t * t) * 65_536.0).ceil() as u64;
+            let min_velocity = (counts / t * 65_536.0).ceil() as u64;
+            (
+                Just(if negative {
+                    -(distance as i64)
+                } else {
+                    distance as i64
+                }),
+                log_uniform_between(min_velocity, MaxVelocity::MAX_BITS as u64),
+                log_uniform_between(min_acceleration, ScurveAcceleration::MAX_BITS as u64),
+                log_uniform_between(min_jerk, Jerk::MAX_BITS as u64),
+            )
+        })
+        .prop_map(
+            |(destination, velocity, acceleration, jerk)| ScurveParameters {
+                destination: Destination::from_bits(
+                    destination.clamp(-(1 << 30), (1 << 30) - 1) as i32
+                )
+                .unwrap(),
+                max_velocity: MaxVelocity::from_bits(velocity as u32).unwrap(),
+                max_acceleration: ScurveAcceleration::from_bits(acceleration as u16).unwrap(),
+                jerk: Jerk::from_bits(jerk as u32).unwrap(),
+            },
+        )
+}
