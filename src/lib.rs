@@ -10,6 +10,7 @@ mod scurve;
 mod state;
 mod trapezoidal;
 mod velocity;
+pub mod waveform;
 
 pub use error::Error;
 pub use scurve::{SCurve, ScurveParameters, ScurvePlan};
