@@ -1,0 +1,141 @@
+//! The moves the benches and the `cycle_budget` example measure, built once here so both time
+//! the same thing: a 1,000,000-count move at 100 counts/cycle for every generator and peer.
+#![allow(dead_code)] // each user takes what it measures
+
+use profilegen::format::juno::{Acceleration, TargetVelocity};
+use profilegen::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
+use profilegen::waveform::{MicrostepTable, Phases};
+use profilegen::{
+    ProfileGenerator, SCurve, ScurveParameters, Trapezoidal, TrapezoidalParameters,
+    VelocityContouring, VelocityParameters,
+};
+
+/// Distance, counts.
+pub const DISTANCE: i32 = 1_000_000;
+/// Maximum velocity, counts/cycle.
+pub const VELOCITY: f64 = 100.0;
+/// Acceleration, counts/cycle² (trapezoid and velocity modes; S-curve maximum).
+pub const ACCELERATION: f64 = 0.25;
+/// S-curve maximum acceleration (16-bit register: < 0.5), counts/cycle².
+pub const SCURVE_ACCELERATION: f64 = 0.4;
+/// S-curve jerk, counts/cycle³.
+pub const JERK: f64 = 0.001;
+
+pub fn velocity() -> VelocityContouring {
+    VelocityContouring::new(VelocityParameters {
+        velocity: TargetVelocity::from_num(VELOCITY).unwrap(),
+        acceleration: Acceleration::from_num(ACCELERATION).unwrap(),
+        deceleration: Acceleration::ZERO,
+    })
+    .unwrap()
+}
+
+pub fn trapezoidal_parameters() -> TrapezoidalParameters {
+    TrapezoidalParameters {
+        destination: DISTANCE,
+        max_velocity: TargetVelocity::from_num(VELOCITY).unwrap(),
+        acceleration: Acceleration::from_num(ACCELERATION).unwrap(),
+        deceleration: Acceleration::ZERO,
+        start_velocity: TargetVelocity::ZERO,
+    }
+}
+
+pub fn trapezoidal() -> Trapezoidal {
+    Trapezoidal::new(trapezoidal_parameters()).unwrap()
+}
+
+pub fn scurve_parameters() -> ScurveParameters {
+    ScurveParameters {
+        destination: Destination::from_num(f64::from(DISTANCE)).unwrap(),
+        max_velocity: MaxVelocity::from_num(VELOCITY).unwrap(),
+        max_acceleration: ScurveAcceleration::from_num(SCURVE_ACCELERATION).unwrap(),
+        jerk: Jerk::from_num(JERK).unwrap(),
+    }
+}
+
+pub fn scurve() -> SCurve {
+    SCurve::new(scurve_parameters()).unwrap()
+}
+
+pub fn microstep_table() -> MicrostepTable {
+    MicrostepTable::new(256, Phases::Three)
+        .unwrap()
+        .with_current(20_000)
+        .unwrap()
+}
+
+/// A copy of `generator` advanced by `cycles`.
+pub fn advanced<G: ProfileGenerator + Clone>(generator: &G, cycles: u64) -> G {
+    let mut copy = generator.clone();
+    for _ in 0..cycles {
+        copy.step();
+    }
+    copy
+}
+
+/// The cycle on which the trapezoid starts to decelerate (velocity first drops).
+pub fn trapezoidal_deceleration_start() -> u64 {
+    let mut axis = trapezoidal();
+    let mut cycle = 0;
+    let mut peak = axis.state().velocity;
+    while !axis.is_complete() {
+        let state = axis.step();
+        cycle += 1;
+        if state.velocity < peak {
+            return cycle - 1;
+        }
+        peak = state.velocity;
+    }
+    cycle
+}
+
+/// Peers, in per-cycle units (time unit = one cycle).
+pub mod peers {
+    use rsruckig::prelude::*;
+
+    pub fn ruckig_input() -> InputParameter<1> {
+        let mut input = InputParameter::new(None);
+        input.current_position[0] = 0.0;
+        input.target_position[0] = f64::from(super::DISTANCE);
+        input.max_velocity[0] = super::VELOCITY;
+        input.max_acceleration[0] = super::SCURVE_ACCELERATION;
+        input.max_jerk[0] = super::JERK;
+        input
+    }
+
+    pub fn ruckig() -> Ruckig<1, ThrowErrorHandler> {
+        Ruckig::<1, ThrowErrorHandler>::new(None, 1.0)
+    }
+
+    /// Ruckig's whole-trajectory calculation; returns the duration.
+    pub fn ruckig_plan(input: &InputParameter<1>) -> f64 {
+        let mut trajectory = Trajectory::new(None);
+        ruckig().calculate(input, &mut trajectory).unwrap();
+        trajectory.get_duration()
+    }
+
+    pub fn s_curve_input() -> s_curve::SCurveInput {
+        s_curve::SCurveInput {
+            constraints: s_curve::SCurveConstraints {
+                max_jerk: super::JERK,
+                max_acceleration: super::SCURVE_ACCELERATION,
+                max_velocity: super::VELOCITY,
+            },
+            start_conditions: s_curve::SCurveStartConditions {
+                q0: 0.0,
+                q1: f64::from(super::DISTANCE),
+                v0: 0.0,
+                v1: 0.0,
+            },
+        }
+    }
+
+    /// ramp-maker's trapezoid in its default number type (U32F32 fixed point), steps per cycle.
+    pub fn ramp_maker() -> ramp_maker::Trapezoidal<fixed::types::U32F32> {
+        use fixed::types::U32F32;
+        use ramp_maker::MotionProfile as _;
+        let mut profile = ramp_maker::Trapezoidal::new(U32F32::from_num(super::ACCELERATION));
+        profile.enter_position_mode(U32F32::from_num(super::VELOCITY), super::DISTANCE as u32);
+        profile
+    }
+}
