@@ -47,6 +47,9 @@ pub enum Rule {
     Jerk,
     /// A complete generator moved.
     MovedWhileComplete,
+    /// An abrupt stop did not zero the velocity on the next cycle with the position held, or
+    /// the generator was not at rest and complete after it (SPEC §9).
+    AbruptStop,
 }
 
 /// A cycle that broke a rule, with the states on either side.
@@ -123,6 +126,31 @@ pub fn check_limits(previous: &State, next: &State, limits: &Limits) -> Result<(
     let jerk = next.acceleration.wrapping_sub(previous.acceleration);
     if !within(jerk, limits.max_jerk) {
         return Err(Rule::Jerk);
+    }
+    Ok(())
+}
+
+/// Applies an abrupt stop and checks SPEC §9 on the next two cycles: the first holds the position
+/// with velocity zero (its acceleration is the whole drop, by the identities); the generator is
+/// then complete, and the cycle after it is at rest.
+///
+/// # Errors
+/// [`Rule::AbruptStop`] (or an identity) on the first cycle that breaks it.
+pub fn check_abrupt_stop<G: ProfileGenerator + ?Sized>(generator: &mut G) -> Result<(), Rule> {
+    let before = generator.state();
+    generator.stop(crate::StopKind::Abrupt);
+    let stopped = generator.step();
+    check_identities(&before, &stopped)?;
+    let held = State {
+        position: before.position,
+        velocity: I32F32::ZERO,
+        acceleration: -before.velocity,
+    };
+    if stopped != held || !generator.is_complete() {
+        return Err(Rule::AbruptStop);
+    }
+    if generator.step() != State::at_rest(before.position) {
+        return Err(Rule::AbruptStop);
     }
     Ok(())
 }

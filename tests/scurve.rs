@@ -3,7 +3,7 @@
 mod strategies;
 
 use fixed::types::I32F32;
-use profilegen::conformance::Checker;
+use profilegen::conformance::{check_abrupt_stop, Checker};
 use profilegen::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
 use profilegen::reference::scurve_duration;
 use profilegen::{Error, ProfileGenerator, SCurve, ScurveParameters, State, StopKind};
@@ -213,19 +213,7 @@ fn abrupt_stop() {
     for _ in 0..80 {
         axis.step();
     }
-    let before = axis.state();
-    axis.stop(StopKind::Abrupt);
-    let stopped = axis.step();
-    assert_eq!(
-        stopped,
-        State {
-            position: before.position,
-            velocity: I32F32::ZERO,
-            acceleration: -before.velocity
-        }
-    );
-    assert!(axis.is_complete());
-    assert_eq!(axis.step(), State::at_rest(before.position));
+    check_abrupt_stop(&mut axis).unwrap();
     assert_eq!(
         axis.parameters().max_velocity,
         MaxVelocity::ZERO,

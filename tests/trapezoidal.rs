@@ -3,7 +3,7 @@
 mod strategies;
 
 use fixed::types::I32F32;
-use profilegen::conformance::Checker;
+use profilegen::conformance::{check_abrupt_stop, Checker};
 use profilegen::format::juno::{Acceleration, TargetVelocity};
 use profilegen::reference::trapezoidal_duration;
 use profilegen::{Error, ProfileGenerator, State, StopKind, Trapezoidal, TrapezoidalParameters};
@@ -243,22 +243,7 @@ fn abrupt_stop_holds_position() {
     for _ in 0..30 {
         checker.step(&mut axis).unwrap();
     }
-    let before = axis.state();
-    axis.stop(StopKind::Abrupt);
-    let stopped = checker.step(&mut axis).unwrap();
-    assert_eq!(
-        stopped,
-        State {
-            position: before.position,
-            velocity: I32F32::ZERO,
-            acceleration: -before.velocity
-        }
-    );
-    assert!(axis.is_complete());
-    assert_eq!(
-        checker.step(&mut axis).unwrap(),
-        State::at_rest(before.position)
-    );
+    check_abrupt_stop(&mut axis).unwrap();
 }
 
 #[test]

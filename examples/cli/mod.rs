@@ -169,7 +169,7 @@ pub fn build(options: &Options) -> Result<Box<dyn Axis>, String> {
                 )?,
             };
             let axis = VelocityContouring::new(parameters)
-                .map_err(|error| format!("--acceleration: {error}"))?;
+                .map_err(|error| format!("{}: {error}", option_of(&error)))?;
             Ok(Box::new(axis))
         }
         Mode::Trapezoidal => {
