@@ -396,7 +396,8 @@ fn run_script(script: strategies::VelocityScript, strict: bool) -> Result<(), Te
                 axis.stop(kind);
                 model.stop(kind);
                 target = I32F32::ZERO;
-                abrupt = kind == StopKind::Abrupt;
+                // A smooth stop does not cancel an abrupt stop still pending.
+                abrupt = abrupt || kind == StopKind::Abrupt;
             }
         }
         checker.command_given(&axis);
