@@ -31,15 +31,15 @@
 //! # Duration, and where it falls short
 //!
 //! The planner searches shapes near the continuous-time optimum ([`crate::reference::scurve_duration`])
-//! and keeps the one with the fewest cycles. With a jerk of 2^20 raw (2.4·10⁻⁴ counts/cycle³) or
-//! more, moves of 50 cycles or more take at most 4 cycles over the optimum (asserted by the
-//! property tests). Below that jerk the remainder (< `a·b`, up to ~10⁶ units) needs dips whose
-//! jerk is small, hence a longer cruise: a measured sweep of log-uniform moves found the bound
-//! exceeded in about a third of all cases with jerk < 2^16 raw (worst seen: +1,800 cycles on a
-//! 300,000-cycle move; +150 cycles for 1 count at jerk 1 raw), ~1 % for 2^16 … 2^20, and
-//! occasionally for very short moves (a 2-count move: 16 cycles against 11.7). Exactness and every
-//! limit hold in all cases. A finer remainder mechanism (ramps with Bresenham-placed jerk holes)
-//! is the known way to close this gap.
+//! and keeps the one with the fewest cycles. When the cruise is too short for the remainder's
+//! dips, dips shaped like the ramps (`−box(x) ∗ box(y)`) take what they can at the start of the
+//! deceleration, each checked cycle by cycle against the limits before it is placed. With a jerk
+//! of 2^16 raw (1.5·10⁻⁵ counts/cycle³) or more, moves of 50 cycles or more take at most 4 cycles
+//! over the optimum (asserted by the property tests). Below that jerk the bound is not always met:
+//! a measured sweep of 1,550 log-uniform moves (optimum ≤ 300,000 cycles) exceeded it in 265, all
+//! with jerk < 2^16 raw (158 of them below 2^4), worst +143 cycles; exactness and every limit hold
+//! in all cases. Planning such moves costs up to milliseconds (the cycle-by-cycle checks of the
+//! ramp dips); large-jerk moves plan in tens of microseconds.
 //!
 //! The integer plan may also keep a cycle or two of constant acceleration *below* the maximum
 //! (phases II/VI) where the continuous optimum has none, and always keeps at least one cycle at
@@ -401,8 +401,25 @@ fn try_shape(distance: u128, a: u64, b: u64, limits: Limits64) -> Option<Schedul
         }
     }
     let cruise_velocity = u64::try_from(peak_velocity).ok()?;
-    if !fill_dips(&mut schedule, over, a + b, c - 1, limits, cruise_velocity) {
-        return None;
+    // The remainder goes to dips in the cruise. Where the cruise is too short for it (small
+    // jerks), dips shaped like the ramps first take what they can at the start of the
+    // deceleration, where the main move leaves jerk to spare.
+    let mut cruise_only = schedule;
+    if fill_dips(
+        &mut cruise_only,
+        over,
+        a + b,
+        c - 1,
+        limits,
+        cruise_velocity,
+    ) {
+        schedule = cruise_only;
+    } else {
+        schedule.sort();
+        let over = ramp_dips(&mut schedule, over, a, b, c, limits);
+        if !fill_dips(&mut schedule, over, a + b, c - 1, limits, cruise_velocity) {
+            return None;
+        }
     }
     schedule.sort();
     schedule.plan = ScurvePlan {
@@ -412,6 +429,112 @@ fn try_shape(distance: u128, a: u64, b: u64, limits: Limits64) -> Option<Schedul
         peak_velocity: cruise_velocity as i64,
     };
     Some(schedule)
+}
+
+/// The jerk, acceleration and velocity of a schedule on cycles `from ..= to`, by running its
+/// changes (sorted) from the start: `(jerk, acceleration, velocity)` per cycle, visited in order.
+fn scan_profile(
+    schedule: &Schedule,
+    from: u64,
+    to: u64,
+    mut visit: impl FnMut(u64, i128, i128, i128) -> bool,
+) -> bool {
+    let (mut jerk, mut acceleration, mut velocity) = (0i128, 0i128, 0i128);
+    let changes = &schedule.changes[..schedule.count];
+    let mut next = 0;
+    // Jump to `from` in closed form: each change contributes amount·(k), amount·k(k+1)/2 with
+    // k = cycles since it (inclusive).
+    if from > 0 {
+        let t = from - 1;
+        for change in changes.iter().take_while(|c| c.cycle <= t) {
+            let k = i128::from(t - change.cycle + 1);
+            let amount = i128::from(change.amount);
+            jerk += amount;
+            acceleration += amount * k;
+            velocity += amount * k * (k + 1) / 2;
+            next += 1;
+        }
+    }
+    for t in from..=to {
+        while let Some(change) = changes.get(next).filter(|c| c.cycle == t) {
+            jerk += i128::from(change.amount);
+            next += 1;
+        }
+        acceleration += jerk;
+        velocity += acceleration;
+        if !visit(t, jerk, acceleration, velocity) {
+            return false;
+        }
+    }
+    true
+}
+
+/// Whether the dip `−box(x) ∗ box(y)` starting on cycle `start` keeps every cycle of
+/// `schedule` within the limits and the velocity non-negative (checked on the cycles it touches).
+fn dip_fits(schedule: &Schedule, start: u64, x: u64, y: u64, limits: Limits64) -> bool {
+    let mut dip = Schedule::EMPTY;
+    if !dip.push_triple_box(start, -1, x, y, 1) {
+        return false;
+    }
+    dip.sort();
+    let end = start + x + y + 1;
+    // The dip's own jerk, acceleration and velocity, run alongside the schedule's.
+    let (j_max, a_max) = (i128::from(limits.jerk), i128::from(limits.acceleration));
+    let mut own = (0i128, 0i128, 0i128);
+    let mut own_next = 0;
+    scan_profile(schedule, start, end, |t, jerk, acceleration, velocity| {
+        while let Some(change) = dip.changes[..dip.count]
+            .get(own_next)
+            .filter(|c| c.cycle == t)
+        {
+            own.0 += i128::from(change.amount);
+            own_next += 1;
+        }
+        own.1 += own.0;
+        own.2 += own.1;
+        (jerk + own.0).abs() <= j_max
+            && (acceleration + own.1).abs() <= a_max
+            && velocity + own.2 >= 0
+    })
+}
+
+/// Takes what it can of `left` with up to three ramp-shaped dips `−box(x) ∗ box(y)` (x ≤ a,
+/// y ≤ b, taking x·y each) placed around the start of the deceleration, each checked cycle by
+/// cycle against the limits; returns what is left for the cruise dips.
+fn ramp_dips(
+    schedule: &mut Schedule,
+    mut left: u128,
+    a: u64,
+    b: u64,
+    c: u64,
+    limits: Limits64,
+) -> u128 {
+    for _ in 0..3 {
+        if left == 0 {
+            break;
+        }
+        let mut placed = false;
+        'starts: for start in [c - 1, c, c.saturating_sub(2), c + 1] {
+            for y in (1..=b).rev().take(64) {
+                let x = (left / u128::from(y)).min(u128::from(a)) as u64;
+                if x == 0 {
+                    continue;
+                }
+                if dip_fits(schedule, start, x, y, limits) {
+                    if schedule.push_triple_box(start, -1, x, y, 1) {
+                        schedule.sort();
+                        left -= u128::from(x) * u128::from(y);
+                        placed = true;
+                    }
+                    break 'starts;
+                }
+            }
+        }
+        if !placed {
+            break;
+        }
+    }
+    left
 }
 
 /// Plans a move of `distance` (> 0, 2^-32 counts) within the limits: shapes near the

@@ -11,11 +11,11 @@ use proptest::prelude::*;
 use strategies::scurve_move;
 
 /// The class on which the duration bound of SPEC §8 (≤ 4 cycles over the continuous optimum) is
-/// asserted: jerk from 2^20 raw (2.4e-4 counts/cycle³) and moves of at least 50 cycles. Outside
+/// asserted: jerk from 2^16 raw (1.5e-5 counts/cycle³) and moves of at least 50 cycles. Outside
 /// it the bound is not met by this planner: with a small jerk the remainder's dips need a longer
 /// cruise, and very short moves have no room for them (see the `scurve` module docs and the
 /// issue notes for measurements).
-const BOUND_FROM_JERK: u32 = 1 << 20;
+const BOUND_FROM_JERK: u32 = 1 << 16;
 const BOUND_FROM_CYCLES: f64 = 50.0;
 
 fn parameters(destination: f64, velocity: f64, acceleration: f64, jerk: f64) -> ScurveParameters {
