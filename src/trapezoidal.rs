@@ -197,10 +197,8 @@ impl Trapezoidal {
     /// # Errors
     /// As [`TrapezoidalParameters::validate`]; on error nothing changes.
     pub fn set_parameters(&mut self, parameters: TrapezoidalParameters) -> Result<(), Error> {
-        self.profile = parameters.profile()?;
-        self.parameters = parameters;
+        self.change(parameters)?;
         self.destination = i64::from(parameters.destination) << 32;
-        self.cached_stop = (-1, 0);
         // A new velocity restarts a stopped or stopping axis (the abrupt stop still happens).
         self.mode = match self.mode {
             Mode::Stopped | Mode::Stopping | Mode::Move => Mode::Move,

@@ -151,41 +151,43 @@ pub fn register<R>(
     convert(value.unwrap_or(0.0)).map_err(|error| format!("{option}: {error}"))
 }
 
+/// `--acceleration` and `--deceleration` as Juno 8.24 rates (velocity and trapezoidal modes).
+fn juno_rates(options: &Options) -> Result<(Acceleration, Acceleration), String> {
+    Ok((
+        register(
+            "--acceleration",
+            options.acceleration,
+            Acceleration::from_num,
+        )?,
+        register(
+            "--deceleration",
+            options.deceleration,
+            Acceleration::from_num,
+        )?,
+    ))
+}
+
 /// Builds the generator of the chosen mode from the options.
 pub fn build(options: &Options) -> Result<Box<dyn Axis>, String> {
     match options.mode {
         Mode::Velocity => {
+            let (acceleration, deceleration) = juno_rates(options)?;
             let parameters = VelocityParameters {
                 velocity: register("--velocity", options.velocity, TargetVelocity::from_num)?,
-                acceleration: register(
-                    "--acceleration",
-                    options.acceleration,
-                    Acceleration::from_num,
-                )?,
-                deceleration: register(
-                    "--deceleration",
-                    options.deceleration,
-                    Acceleration::from_num,
-                )?,
+                acceleration,
+                deceleration,
             };
             let axis = VelocityContouring::new(parameters)
                 .map_err(|error| format!("{}: {error}", option_of(&error)))?;
             Ok(Box::new(axis))
         }
         Mode::Trapezoidal => {
+            let (acceleration, deceleration) = juno_rates(options)?;
             let parameters = TrapezoidalParameters {
                 destination: register("--destination", options.destination, destination)?,
                 max_velocity: register("--velocity", options.velocity, TargetVelocity::from_num)?,
-                acceleration: register(
-                    "--acceleration",
-                    options.acceleration,
-                    Acceleration::from_num,
-                )?,
-                deceleration: register(
-                    "--deceleration",
-                    options.deceleration,
-                    Acceleration::from_num,
-                )?,
+                acceleration,
+                deceleration,
                 start_velocity: register(
                     "--start-velocity",
                     options.start_velocity,
