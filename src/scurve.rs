@@ -473,30 +473,20 @@ fn scan_profile(
 /// Whether the dip `−box(x) ∗ box(y)` starting on cycle `start` keeps every cycle of
 /// `schedule` within the limits and the velocity non-negative (checked on the cycles it touches).
 fn dip_fits(schedule: &Schedule, start: u64, x: u64, y: u64, limits: Limits64) -> bool {
-    let mut dip = Schedule::EMPTY;
-    if !dip.push_triple_box(start, -1, x, y, 1) {
+    let mut with_dip = *schedule;
+    if !with_dip.push_triple_box(start, -1, x, y, 1) {
         return false;
     }
-    dip.sort();
-    let end = start + x + y + 1;
-    // The dip's own jerk, acceleration and velocity, run alongside the schedule's.
+    with_dip.sort();
     let (j_max, a_max) = (i128::from(limits.jerk), i128::from(limits.acceleration));
-    let mut own = (0i128, 0i128, 0i128);
-    let mut own_next = 0;
-    scan_profile(schedule, start, end, |t, jerk, acceleration, velocity| {
-        while let Some(change) = dip.changes[..dip.count]
-            .get(own_next)
-            .filter(|c| c.cycle == t)
-        {
-            own.0 += i128::from(change.amount);
-            own_next += 1;
-        }
-        own.1 += own.0;
-        own.2 += own.1;
-        (jerk + own.0).abs() <= j_max
-            && (acceleration + own.1).abs() <= a_max
-            && velocity + own.2 >= 0
-    })
+    scan_profile(
+        &with_dip,
+        start,
+        start + x + y + 1,
+        |_, jerk, acceleration, velocity| {
+            jerk.abs() <= j_max && acceleration.abs() <= a_max && velocity >= 0
+        },
+    )
 }
 
 /// Takes what it can of `left` with up to three ramp-shaped dips `−box(x) ∗ box(y)` (x ≤ a,
@@ -565,20 +555,27 @@ fn plan(distance: u128, limits: Limits64) -> Schedule {
         for a in a1.saturating_sub(1).max(1)..=a1 + 1 {
             for b in b1.saturating_sub(2).max(a)..=b1 + 2 {
                 if let Some(candidate) = try_shape(distance, a, b, limits) {
-                    if best
-                        .as_ref()
-                        .is_none_or(|current| candidate.plan.total < current.plan.total)
-                    {
-                        best = Some(candidate);
-                    }
+                    keep_faster(&mut best, candidate);
                 }
             }
         }
     }
     best.unwrap_or_else(|| {
-        // Always feasible: velocity 1 (2^-32 counts/cycle) for `distance` cycles.
+        // Ramps of one cycle always fit: the height is at most min(J, A) < 2^31 while a move is at
+        // least 2^32 units, so c ≥ 3 = a + b + 1, and with a·b = 1 the early units take the whole
+        // overshoot (no dips). The empty plan is never reached.
         try_shape(distance, 1, 1, limits).unwrap_or(Schedule::EMPTY)
     })
+}
+
+/// Keeps `candidate` if it takes fewer cycles than the best plan so far.
+fn keep_faster(best: &mut Option<Schedule>, candidate: Schedule) {
+    if best
+        .as_ref()
+        .is_none_or(|current| candidate.plan.total < current.plan.total)
+    {
+        *best = Some(candidate);
+    }
 }
 
 /// Searches shapes from ramps `(a, start)` toward shorter ones — `b` down to `a`, then both
@@ -603,12 +600,7 @@ fn scan_shapes(distance: u128, a: u64, start: u64, limits: Limits64, best: &mut 
         let Some(candidate) = try_shape(distance, a, b, limits) else {
             return false;
         };
-        if best
-            .as_ref()
-            .is_none_or(|current| candidate.plan.total < current.plan.total)
-        {
-            *best = Some(candidate);
-        }
+        keep_faster(best, candidate);
         true
     };
     // Doubling steps from the start until a shape fits.
@@ -958,13 +950,11 @@ impl ProfileGenerator for SCurve {
     }
 
     fn stop(&mut self, kind: StopKind) {
-        if self.motion == Motion::Rest {
-            self.velocity_cleared = true;
-            return;
-        }
+        // Either stop clears the velocity register, moving or not (SPEC §9).
         self.velocity_cleared = true;
-        self.motion = match kind {
-            StopKind::Smooth if self.motion != Motion::AbruptPending => Motion::Stopping,
+        self.motion = match (kind, self.motion) {
+            (_, Motion::Rest) => Motion::Rest,
+            (StopKind::Smooth, Motion::Planned | Motion::Stopping) => Motion::Stopping,
             _ => Motion::AbruptPending,
         };
     }
