@@ -12,40 +12,50 @@
 //! Profiles add, and so do their jerks: a sum of triple boxes whose heights add up to at most J
 //! never jerks harder than J. The plan is therefore:
 //!
-//! 1. the **main move**: `(h − e)·tb(a, b, c) + e·tb(a, b, c − 1)`, which covers
-//!    `a·b·(h·c − e)`: every multiple of `a·b` is reachable, with the same seven phases;
+//! 1. the **main move**: units of three kinds, `tb(a, b, c)`, `tb(a, b − 1, c)` and
+//!    `tb(a − 1, b, c)`, mixed so that the peak acceleration is exactly the maximum (where the
+//!    ramps reach it) and the peak velocity within a few units of the maximum velocity; a
+//!    *velocity notch* (below) brings the cruise to the maximum velocity to the raw unit. Ending
+//!    `e` units' cruise one cycle early (`c − 1`) takes `e·a·b` off the distance, so every
+//!    multiple of `a·b` is reachable with the same seven phases;
 //! 2. the **remainder** `E < a·b` (the main move is planned to overshoot by it) is taken out by
-//!    *dips* — small negative triple boxes, and finally a run of `−1` in velocity — placed one after
-//!    another inside the cruise, where the main move's jerk is zero, so each may use the whole
-//!    jerk budget. Dips only lower the velocity, so the velocity limit holds; their acceleration is
-//!    kept within the maximum, and their depth within the cruise velocity, so the position never
-//!    moves backwards.
+//!    *dips* in the cruise — small negative triple boxes placed one after another where the main
+//!    move's jerk is zero, so each may use the whole jerk budget — or, where the cruise is too
+//!    short for them (small jerks, moves that never cruise), by **notch pairs**.
+//!
+//! A *notch pair* of width `w` and span `k` lowers the acceleration by one unit for `w` cycles
+//! and raises it by one unit for `w` cycles `k` cycles later: the velocity dips by at most
+//! `min(w, k)` in between and is unchanged after, so the move keeps its length and its end and
+//! covers exactly `w·k` less. Its jerk is ±1 on four single cycles, which fits wherever the main
+//! move has one unit of jerk to spare — at the ends of the ramps (phase I ends on +J and III
+//! begins on −J), and everywhere in phases of zero jerk — so notch pairs fit inside moves that
+//! use the full jerk on every cycle. Two of them take any remainder: with spans in the intervals
+//! the spare jerk allows, `w₁·k₁ + w₂·k₂ = E` is a linear Diophantine equation, solved exactly.
+//!
+//! Every plan is checked against the limits before it is used ([`within_limits`]: per run of
+//! constant jerk the acceleration is linear and the velocity quadratic, so a few cycles per jerk
+//! change decide it), and dips and notches only lower the velocity, so the velocity limit holds
+//! and the position never moves backwards.
 //!
 //! The plan is a short list of jerk changes (cycle, amount); stepping adds the due changes to the
 //! jerk, the jerk to the acceleration, the acceleration to the velocity and the velocity to the
 //! position: four integer additions and a comparison per cycle. The sum of the profile is the
 //! distance by construction, so the last state is exactly the destination with velocity and
-//! acceleration zero. Where the cruise is too short for the remainder, the planner trades peak
-//! velocity for cruise length (see [`ScurvePlan`]); this costs cycles, not exactness.
+//! acceleration zero.
 //!
-//! # Duration, and where it falls short
+//! # Duration
 //!
-//! The planner searches shapes near the continuous-time optimum ([`crate::reference::scurve_duration`])
-//! and keeps the one with the fewest cycles. When the cruise is too short for the remainder's
-//! dips, dips shaped like the ramps (`−box(x) ∗ box(y)`) take what they can at the start of the
-//! deceleration, each checked cycle by cycle against the limits before it is placed. With a jerk
-//! of 2^16 raw (1.5·10⁻⁵ counts/cycle³) or more, moves of 50 cycles or more take at most 4 cycles
-//! over the optimum (asserted by the property tests). Below that jerk the bound is not always met:
-//! a measured sweep of 1,550 log-uniform moves (optimum ≤ 300,000 cycles) exceeded it in 265, all
-//! with jerk < 2^16 raw (158 of them below 2^4), worst +143 cycles; exactness and every limit hold
-//! in all cases. Planning such moves is slow — 1.3 ms on average over that sweep, 41 ms at worst —
-//! because of the cycle-by-cycle checks of the ramp dips; large-jerk moves plan in tens of
-//! microseconds.
+//! The planner searches shapes near the continuous-time optimum
+//! ([`crate::reference::scurve_duration`]) and keeps the one with the fewest cycles; every move
+//! takes at most 4 cycles over that optimum (asserted by the property tests over the whole
+//! register ranges; over 240,000 random moves measured, the worst was +2.9 cycles). Planning
+//! takes about 10 µs (9 µs on average over those moves, 0.4 ms at worst): shapes that cannot beat
+//! the best plan so far are not built.
 //!
-//! The integer plan may also keep a cycle or two of constant acceleration *below* the maximum
-//! (phases II/VI) where the continuous optimum has none, and always keeps at least one cycle at
-//! zero acceleration between phases III and V (the acceleration has to pass through zero within
-//! the jerk limit); [`ScurvePlan::phases`] reports them as they are.
+//! The integer plan may keep a cycle or two of constant acceleration *below* the maximum (phases
+//! II/VI) where the continuous optimum has none, and always keeps at least one cycle at zero
+//! acceleration between phases III and V (the acceleration has to pass through zero within the
+//! jerk limit); [`ScurvePlan::phases`] reports them as they are.
 
 use fixed::types::I32F32;
 use num_traits::Float;
@@ -90,7 +100,7 @@ struct JerkChange {
     amount: i64,
 }
 
-/// At most this many jerk changes: 48 for the main move, 8 per dip.
+/// At most this many jerk changes: 48 for the main move, 8 for each notch pair and each dip.
 const MAX_CHANGES: usize = 128;
 
 /// The exact limits in I32F32 bits.
@@ -321,211 +331,670 @@ fn next_dip(
     best.map(|(_, shape)| shape)
 }
 
+/// How many counts of third-kind units [`try_shape`] tries when lowering the peak velocity.
+const LOWERING_TRIES: u128 = 48;
+
+/// The main move's kinds of unit: `(ramp a, ramp b, area a·b)`; see [`try_shape`].
+type Kinds = [(u64, u64, u128); 3];
+
 /// Tries one shape of the main move, ramps `a ≤ b`; `None` if the distance is too short for it,
-/// its peak velocity cannot be brought within the maximum, or the remainder does not fit its
-/// cruise.
+/// its peak velocity cannot be brought within the maximum, or the remainder does not fit.
 ///
-/// The main move is a sum of triple boxes whose heights add up to `h = min(J, A/a)` (the jerk of
-/// phases I and VII): `h₀·tb(a, b, ·) + h₁·tb(a, b−1, ·) + h₂·tb(a−1, b, ·)`. Each unit moved from
-/// the first kind to the second lowers the peak velocity by `a`, to the third by `b`, so the peak
-/// velocity `Σ hᵢ·aᵢ·bᵢ` comes within a few units of the maximum velocity instead of the nearest
-/// multiple of `h·a`: long moves cruise at the speed they were given. Each kind then ends its
-/// cruise on cycle `c` or, for `eᵢ` of its units, one cycle early, which takes `eᵢ·aᵢ·bᵢ` off the
-/// distance; what is left (less than `a·b`) goes to the dips.
-fn try_shape(distance: u128, a: u64, b: u64, limits: Limits64) -> Option<Schedule> {
-    let h = u128::from(limits.jerk).min(u128::from(limits.acceleration) / u128::from(a));
-    if h == 0 {
-        return None;
-    }
+/// The main move is a sum of triple boxes whose heights add up to `h` (the jerk of phase I):
+/// `h₀·tb(a, b, ·) + h₁·tb(a, b−1, ·) + h₂·tb(a−1, b, ·)`. Each unit moved from the first kind to
+/// the second lowers the peak velocity by `a`, to the third by `b` and the peak acceleration by
+/// one, so the peak acceleration comes to the maximum exactly (`h` is chosen so that `h·a`
+/// reaches it), and the peak velocity within a few units of the maximum velocity — or, with a
+/// *velocity notch* (a notch pair of width `w` ending with phase II and with phase VI, see
+/// [`push_notch_pair`]), exactly to it: `w` takes the last units off the whole cruise. Both
+/// are tried; the faster is kept. Each kind then ends its cruise on cycle `c` or, for `eᵢ` of its
+/// units, one cycle early, which takes `eᵢ·aᵢ·bᵢ` off the distance; what is left (less than
+/// `a·b`) goes to dips in the cruise or to notch pairs.
+fn try_shape(distance: u128, a: u64, b: u64, limits: Limits64, bound: u64) -> Built {
     let (a_, b_) = (u128::from(a), u128::from(b));
-    // The three kinds: (ramp, ramp, area).
-    let kinds = [
+    let acceleration_limit = u128::from(limits.acceleration);
+    // The jerk of phase I: as much as the jerk limit allows, and enough that `h·a` reaches the
+    // maximum acceleration — units of the third kind (one cycle shorter ramp) then lower the peak
+    // acceleration to it exactly, one unit each, where `⌊A/a⌋·a` could fall short by up to `a`
+    // units (and the move lose time in proportion on a long constant-acceleration phase).
+    let h = u128::from(limits.jerk).min(acceleration_limit.div_ceil(a_));
+    if h == 0 {
+        return Built::Unfit;
+    }
+    let kinds: Kinds = [
         (a, b, a_ * b_),
         (a, b.saturating_sub(1), a_ * (b_ - 1)),
         (a.saturating_sub(1), b, (a_ - 1) * b_),
     ];
+    let usable = |kind: usize| kinds[kind].0 > 0 && kinds[kind].1 > 0;
     let velocity_limit = u128::from(limits.velocity);
-    let mut heights = [h, 0, 0];
-    if h * a_ * b_ > velocity_limit {
-        // Lower the peak by at least `over`, as little more as possible: h₁·a + h₂·b ≥ over.
-        let over = h * a_ * b_ - velocity_limit;
-        let mut best: Option<(u128, u128, u128)> = None;
-        let usable = |kind: usize| kinds[kind].0 > 0 && kinds[kind].1 > 0;
-        for h2 in 0..=h.min(a_ + 1) {
-            if h2 > 0 && !usable(2) {
-                break;
-            }
-            let rest = over.saturating_sub(h2 * b_);
-            let h1 = rest.div_ceil(a_);
+    let acceleration_over = (h * a_).saturating_sub(acceleration_limit);
+    let over = (h * a_ * b_).saturating_sub(velocity_limit);
+    // Lowerings `h₁·a + h₂·b` with at least `acceleration_over` units of the third kind: the
+    // least one that brings the peak velocity within the limit, and the greatest one that does
+    // not go below it (the velocity notch takes the rest).
+    let mut at_least: Option<(u128, u128, u128)> = None;
+    let mut at_most: Option<(u128, u128, u128)> = None;
+    // Units of the third kind lower more each (b ≥ a), so a large `over` needs at least
+    // `(over − h·a)/(b − a)` of them. A few dozen counts of them are tried: the lowering comes
+    // within `a` of `over` with any of them, and the velocity notch takes the rest exactly.
+    let fewest = match (over.checked_sub(h * a_), b_ - a_) {
+        (Some(excess), spread) if spread > 0 => excess.div_ceil(spread),
+        _ => 0,
+    };
+    // (One fewer can still give the greatest lowering below `over`.)
+    let least_h2 = acceleration_over.max(fewest.saturating_sub(1));
+    let tries = if over == 0 { 0 } else { LOWERING_TRIES };
+    for h2 in least_h2..=h.min(least_h2 + tries) {
+        if h2 > 0 && !usable(2) {
+            break;
+        }
+        let rest = over.saturating_sub(h2 * b_);
+        if h2 > h {
+            break;
+        }
+        // Just enough of the second kind, just too few, and as many as there are units left.
+        for h1 in [rest / a_, rest.div_ceil(a_), (rest / a_).min(h - h2)] {
             if (h1 > 0 && !usable(1)) || h1 + h2 > h {
                 continue;
             }
             let lowered = h1 * a_ + h2 * b_;
-            if best.is_none_or(|(least, _, _)| lowered < least) {
-                best = Some((lowered, h1, h2));
+            if lowered >= over && at_least.is_none_or(|(least, _, _)| lowered < least) {
+                at_least = Some((lowered, h1, h2));
+            }
+            if lowered <= over && at_most.is_none_or(|(most, _, _)| lowered > most) {
+                at_most = Some((lowered, h1, h2));
             }
         }
-        heights = match best {
-            Some((_, h1, h2)) => [h - h1 - h2, h1, h2],
+    }
+    let heights_of = |(_, h1, h2): (u128, u128, u128)| [h - h1 - h2, h1, h2];
+    let mut built = Built::Unfit;
+    match at_least {
+        Some(choice) => {
+            built = built.or(build_shape(
+                distance,
+                kinds,
+                heights_of(choice),
+                0,
+                limits,
+                bound,
+            ));
+        }
+        None => {
             // The other kinds cannot lower it enough (tiny ramps): a lower jerk height instead.
-            None => [velocity_limit / (a_ * b_), 0, 0],
-        };
-        if heights[0] + heights[1] + heights[2] == 0 {
-            return None;
+            let h = h
+                .min(acceleration_limit / a_)
+                .min(velocity_limit / (a_ * b_));
+            if h > 0 {
+                built = built.or(build_shape(distance, kinds, [h, 0, 0], 0, limits, bound));
+            }
         }
     }
+    if let Some(choice @ (lowered, _, _)) = at_most {
+        let notch = u64::try_from(over - lowered).unwrap_or(u64::MAX);
+        if notch > 0 && notch <= b {
+            let bound = match &built {
+                Built::Plan(schedule) => schedule.plan.total,
+                _ => bound,
+            };
+            built = built.or(build_shape(
+                distance,
+                kinds,
+                heights_of(choice),
+                notch,
+                limits,
+                bound,
+            ));
+        }
+    }
+    built
+}
+
+/// What came of one shape: a plan, a plan that could not be faster than `bound` (so was not
+/// built), or none (the shape is too large for the distance, or the remainder fits nowhere).
+// The plan is held inline: the library does not allocate, and an outcome is moved only a few
+// times per shape tried.
+#[allow(clippy::large_enum_variant)]
+#[derive(Debug, Clone, Copy)]
+enum Built {
+    Plan(Schedule),
+    Slower,
+    Unfit,
+}
+
+impl Built {
+    /// The better of two outcomes: the faster plan, else `Slower`, else `Unfit`.
+    fn or(self, other: Built) -> Built {
+        match (self, other) {
+            (Built::Plan(mine), Built::Plan(theirs)) => {
+                if theirs.plan.total < mine.plan.total {
+                    Built::Plan(theirs)
+                } else {
+                    Built::Plan(mine)
+                }
+            }
+            (Built::Plan(plan), _) | (_, Built::Plan(plan)) => Built::Plan(plan),
+            (Built::Slower, _) | (_, Built::Slower) => Built::Slower,
+            _ => Built::Unfit,
+        }
+    }
+}
+
+/// Builds the main move of `heights` units of `kinds`, with a velocity notch of `notch` units
+/// (0: none), and takes the remainder off; see [`try_shape`]. Every plan it returns has been
+/// checked against the limits on every cycle ([`within_limits`]).
+fn build_shape(
+    distance: u128,
+    kinds: Kinds,
+    heights: [u128; 3],
+    notch: u64,
+    limits: Limits64,
+    bound: u64,
+) -> Built {
+    let (a, b, _) = kinds[0];
     let peak_velocity: u128 = (0..3).map(|k| heights[k] * kinds[k].2).sum();
-    // Overshoot with whole cycles of cruise, then take off eᵢ·areaᵢ by ending eᵢ units early.
-    let c = distance.div_ceil(peak_velocity);
-    let c = u64::try_from(c).ok()?;
-    if c < a + b + 1 {
-        return None;
+    // The velocity notch runs from cycle b − w to b (the end of phase II, or of I without a
+    // phase II) and from c + b − w to c + b (the end of VI or V): it lowers the
+    // whole cruise by w and takes w·c off the distance.
+    let Some(cruise_velocity) = peak_velocity
+        .checked_sub(u128::from(notch))
+        .filter(|&v| v > 0)
+    else {
+        return Built::Unfit;
+    };
+    // Overshoot with whole cycles of cruise, then take off eᵢ·areaᵢ by ending eᵢ units early
+    // (one unit fewer where what is left is too small for the notch pairs), and the rest with
+    // dips or notch pairs.
+    let Ok(shortest) = u64::try_from(distance.div_ceil(cruise_velocity)) else {
+        return Built::Unfit;
+    };
+    if shortest < a + b + 1 {
+        return Built::Unfit;
     }
-    let mut over = u128::from(c) * peak_velocity - distance;
+    if a + b + shortest >= bound {
+        return Built::Slower;
+    }
+    // A cycle more of cruise where the remainder of the shortest fits nowhere: it is then at
+    // least a whole cruise cycle's worth, which notch pairs can always take.
+    (shortest..=shortest + 1)
+        .find_map(|c| build_with_cruise(distance, kinds, heights, notch, c, limits))
+        .map_or(Built::Unfit, Built::Plan)
+}
+
+/// [`build_shape`] with the deceleration starting on cycle `c`.
+fn build_with_cruise(
+    distance: u128,
+    kinds: Kinds,
+    heights: [u128; 3],
+    notch: u64,
+    c: u64,
+    limits: Limits64,
+) -> Option<Schedule> {
+    let (a, b, _) = kinds[0];
+    let peak_acceleration: u128 = (0..3).map(|k| heights[k] * u128::from(kinds[k].0)).sum();
+    let peak_velocity: u128 = (0..3).map(|k| heights[k] * kinds[k].2).sum();
+    let cruise_velocity = peak_velocity - u128::from(notch);
+    let total = a + b + c;
+    let over = u128::from(c) * cruise_velocity - distance;
     let mut early = [0u128; 3];
+    let mut left = over;
     for k in 0..3 {
-        if let Some(units) = over.checked_div(kinds[k].2) {
+        if let Some(units) = left.checked_div(kinds[k].2) {
             early[k] = heights[k].min(units);
-            over -= early[k] * kinds[k].2;
+            left -= early[k] * kinds[k].2;
         }
     }
-    let mut schedule = Schedule::EMPTY;
-    for k in 0..3 {
-        let (ka, kb, _) = kinds[k];
-        let full = (heights[k] - early[k]) as i64;
-        let short = early[k] as i64;
-        if (full != 0 || short != 0)
-            && !(schedule.push_triple_box(0, full, ka, kb, c)
-                && schedule.push_triple_box(0, short, ka, kb, c - 1))
-        {
+    let main_move = |early: [u128; 3]| -> Option<Schedule> {
+        let mut schedule = Schedule::EMPTY;
+        for k in 0..3 {
+            let (ka, kb, _) = kinds[k];
+            let full = (heights[k] - early[k]) as i64;
+            let short = early[k] as i64;
+            if (full != 0 || short != 0)
+                && !(schedule.push_triple_box(0, full, ka, kb, c)
+                    && schedule.push_triple_box(0, short, ka, kb, c - 1))
+            {
+                return None;
+            }
+        }
+        if notch > 0 && !push_notch_pair(&mut schedule, b - notch, notch, c) {
             return None;
         }
-    }
-    let cruise_velocity = u64::try_from(peak_velocity).ok()?;
-    // The remainder goes to dips in the cruise. Where the cruise is too short for it (small
-    // jerks), dips shaped like the ramps first take what they can at the start of the
-    // deceleration, where the main move leaves jerk to spare.
-    let mut cruise_only = schedule;
+        schedule.sort();
+        Some(schedule)
+    };
+    let cruise_velocity_bits = u64::try_from(cruise_velocity).ok()?;
+    let finish = |mut schedule: Schedule| -> Option<Schedule> {
+        schedule.sort();
+        if !within_limits(&schedule, total, limits) {
+            return None;
+        }
+        schedule.plan = ScurvePlan {
+            phases: [a, b - a, a, c - a - b, a, b - a, a],
+            total,
+            peak_acceleration: peak_acceleration as i64,
+            peak_velocity: cruise_velocity_bits as i64,
+        };
+        Some(schedule)
+    };
+    let schedule = main_move(early)?;
+    // Dips in the cruise first: they fit by construction when the cruise is long enough.
+    let mut dipped = schedule;
     if fill_dips(
-        &mut cruise_only,
-        over,
+        &mut dipped,
+        left,
         a + b,
         c - 1,
         limits,
-        cruise_velocity,
+        cruise_velocity_bits,
     ) {
-        schedule = cruise_only;
-    } else {
-        schedule.sort();
-        let over = ramp_dips(&mut schedule, over, a, b, c, limits);
-        if !fill_dips(&mut schedule, over, a + b, c - 1, limits, cruise_velocity) {
-            return None;
+        if let Some(plan) = finish(dipped) {
+            return Some(plan);
         }
     }
-    schedule.sort();
-    schedule.plan = ScurvePlan {
-        phases: [a, b - a, a, c - a - b, a, b - a, a],
-        total: a + b + c,
-        peak_acceleration: (h * a_) as i64,
-        peak_velocity: cruise_velocity as i64,
-    };
-    Some(schedule)
+    // Notch pairs, with what is left or with one early unit fewer (a notch pair takes at least
+    // about the distance between the ramps, so a small remainder may need more).
+    let mut fewer_early = early;
+    let mut more_left = left;
+    if let Some(k) = (0..3).rev().find(|&k| early[k] > 0) {
+        fewer_early[k] -= 1;
+        more_left += kinds[k].2;
+    }
+    for (early, left) in [(early, left), (fewer_early, more_left)] {
+        let mut notched = main_move(early)?;
+        if notch_pairs(&mut notched, left, total, limits) {
+            if let Some(plan) = finish(notched) {
+                return Some(plan);
+            }
+        }
+    }
+    None
 }
 
-/// The jerk, acceleration and velocity of a schedule on cycles `from ..= to`, by running its
-/// changes (sorted) from the start: `(jerk, acceleration, velocity)` per cycle, visited in order.
-fn scan_profile(
-    schedule: &Schedule,
-    from: u64,
-    to: u64,
-    mut visit: impl FnMut(u64, i128, i128, i128) -> bool,
-) -> bool {
-    let (mut jerk, mut acceleration, mut velocity) = (0i128, 0i128, 0i128);
-    let changes = &schedule.changes[..schedule.count];
-    let mut next = 0;
-    // Jump to `from` in closed form: each change contributes amount·(k), amount·k(k+1)/2 with
-    // k = cycles since it (inclusive).
-    if from > 0 {
-        let t = from - 1;
-        for change in changes.iter().take_while(|c| c.cycle <= t) {
-            let k = i128::from(t - change.cycle + 1);
-            let amount = i128::from(change.amount);
-            jerk += amount;
-            acceleration += amount * k;
-            velocity += amount * k * (k + 1) / 2;
-            next += 1;
+/// At most this many runs of cycles in a [`Runs`]: the runs where a notch can go number a few
+/// per phase; beyond this many the rest are left out (fewer places to try, never a wrong one).
+const MAX_RUNS: usize = 24;
+
+/// Runs of cycles `[start, end)`, sorted and disjoint, in a fixed-capacity array.
+#[derive(Debug, Clone, Copy)]
+struct Runs {
+    runs: [(u64, u64); MAX_RUNS],
+    count: usize,
+}
+
+impl Runs {
+    const EMPTY: Self = Self {
+        runs: [(0, 0); MAX_RUNS],
+        count: 0,
+    };
+
+    /// Appends `[start, end)` (after every run so far), merging it with a run it touches.
+    fn push(&mut self, start: u64, end: u64) {
+        if start >= end {
+            return;
+        }
+        if let Some(last) = self.count.checked_sub(1).map(|i| &mut self.runs[i]) {
+            if last.1 == start {
+                last.1 = end;
+                return;
+            }
+        }
+        if self.count < MAX_RUNS {
+            self.runs[self.count] = (start, end);
+            self.count += 1;
         }
     }
-    for t in from..=to {
-        while let Some(change) = changes.get(next).filter(|c| c.cycle == t) {
-            jerk += i128::from(change.amount);
+
+    fn as_slice(&self) -> &[(u64, u64)] {
+        &self.runs[..self.count]
+    }
+
+    /// The cycles `n` of `self` with `n + shift` in `other`.
+    fn meet_shifted(&self, other: &Runs, shift: u64) -> Runs {
+        let mut met = Runs::EMPTY;
+        let (mut i, mut k) = (0, 0);
+        let (mine, theirs) = (self.as_slice(), other.as_slice());
+        while i < mine.len() && k < theirs.len() {
+            let (a_start, a_end) = mine[i];
+            let (b_start, b_end) = (
+                theirs[k].0.saturating_sub(shift),
+                theirs[k].1.saturating_sub(shift),
+            );
+            met.push(a_start.max(b_start), a_end.min(b_end));
+            if a_end < b_end {
+                i += 1;
+            } else {
+                k += 1;
+            }
+        }
+        met
+    }
+}
+
+/// The jerk runs of a sorted schedule over cycles `0 .. total`: `visit(start, end, jerk)` for
+/// each run of constant jerk, in order.
+fn jerk_runs(
+    schedule: &Schedule,
+    total: u64,
+    mut visit: impl FnMut(u64, u64, i64) -> bool,
+) -> bool {
+    let changes = &schedule.changes[..schedule.count];
+    let (mut jerk, mut at, mut next) = (0i64, 0u64, 0usize);
+    while at < total {
+        while let Some(change) = changes.get(next).filter(|c| c.cycle <= at) {
+            jerk += change.amount;
             next += 1;
         }
-        acceleration += jerk;
-        velocity += acceleration;
-        if !visit(t, jerk, acceleration, velocity) {
+        let end = changes.get(next).map_or(total, |c| c.cycle.min(total));
+        if !visit(at, end, jerk) {
             return false;
         }
+        at = end;
     }
     true
 }
 
-/// Whether the dip `−box(x) ∗ box(y)` starting on cycle `start` keeps every cycle of
-/// `schedule` within the limits and the velocity non-negative (checked on the cycles it touches).
-fn dip_fits(schedule: &Schedule, start: u64, x: u64, y: u64, limits: Limits64) -> bool {
-    let mut with_dip = *schedule;
-    if !with_dip.push_triple_box(start, -1, x, y, 1) {
-        return false;
+/// `⌊n / d⌋` for `d ≠ 0`.
+fn floor_div(n: i128, d: i128) -> i128 {
+    let q = n / d;
+    if (n % d != 0) && ((n < 0) != (d < 0)) {
+        q - 1
+    } else {
+        q
     }
-    with_dip.sort();
-    let (j_max, a_max) = (i128::from(limits.jerk), i128::from(limits.acceleration));
-    scan_profile(
-        &with_dip,
-        start,
-        start + x + y + 1,
-        |_, jerk, acceleration, velocity| {
-            jerk.abs() <= j_max && acceleration.abs() <= a_max && velocity >= 0
-        },
-    )
 }
 
-/// Takes what it can of `left` with up to three ramp-shaped dips `−box(x) ∗ box(y)` (x ≤ a,
-/// y ≤ b, taking x·y each) placed around the start of the deceleration, each checked cycle by
-/// cycle against the limits; returns what is left for the cruise dips.
-fn ramp_dips(
-    schedule: &mut Schedule,
-    mut left: u128,
-    a: u64,
-    b: u64,
-    c: u64,
-    limits: Limits64,
-) -> u128 {
-    for _ in 0..3 {
-        if left == 0 {
-            break;
+/// Whether every cycle of a sorted schedule of `total` cycles keeps |jerk| ≤ J,
+/// |acceleration| ≤ A and 0 ≤ velocity ≤ V, and ends at rest. Checked per run of constant jerk
+/// in closed form — on a run the acceleration is linear and the velocity quadratic, so the ends
+/// of the run and the velocity's turning point are the only cycles that can break a limit — which
+/// makes the check cost per jerk change, not per cycle.
+fn within_limits(schedule: &Schedule, total: u64, limits: Limits64) -> bool {
+    let (j_max, a_max, v_max) = (
+        i128::from(limits.jerk),
+        i128::from(limits.acceleration),
+        i128::from(limits.velocity),
+    );
+    let (mut acceleration, mut velocity) = (0i128, 0i128);
+    let fits = jerk_runs(schedule, total, |start, end, jerk| {
+        let (jerk, cycles) = (i128::from(jerk), i128::from(end - start));
+        // After m cycles of the run (1 ≤ m ≤ cycles).
+        let acceleration_after = |m: i128| acceleration + jerk * m;
+        let velocity_after = |m: i128| velocity + acceleration * m + jerk * m * (m + 1) / 2;
+        if jerk.abs() > j_max
+            || acceleration_after(1).abs() > a_max
+            || acceleration_after(cycles).abs() > a_max
+        {
+            return false;
         }
-        let mut placed = false;
-        'starts: for start in [c - 1, c, c.saturating_sub(2), c + 1] {
-            for y in (1..=b).rev().take(64) {
-                let x = (left / u128::from(y)).min(u128::from(a)) as u64;
-                if x == 0 {
+        let velocity_fits =
+            |m: i128| !(1..=cycles).contains(&m) || (0..=v_max).contains(&velocity_after(m));
+        // The turning point of the velocity: m* = −acceleration/jerk − ½.
+        let turn = if jerk == 0 {
+            1
+        } else {
+            floor_div(-2 * acceleration - jerk, 2 * jerk)
+        };
+        if ![1, cycles, turn, turn + 1].into_iter().all(velocity_fits) {
+            return false;
+        }
+        let (next_acceleration, next_velocity) =
+            (acceleration_after(cycles), velocity_after(cycles));
+        acceleration = next_acceleration;
+        velocity = next_velocity;
+        true
+    });
+    fits && acceleration == 0 && velocity == 0
+}
+
+/// A *notch pair* takes `width · span` off a move without changing its length or its end: the
+/// acceleration is lowered by one unit for `width` cycles from `start` and raised by one unit for
+/// `width` cycles from `start + span`, i.e. the jerk changes by −1, +1 at `start`,
+/// `start + width` and by +1, −1 at `start + span`, `start + span + width`. The velocity dips
+/// by at most `min(width, span)` in between and is unchanged outside.
+///
+/// It needs one unit of jerk to spare in the right direction at its four corners — which the
+/// ramps have at their ends (phase I ends on +J followed by −J) and every phase of zero jerk has
+/// everywhere — so it fits where cruise dips cannot: inside the ramps of a move with no cruise.
+fn push_notch_pair(schedule: &mut Schedule, start: u64, width: u64, span: u64) -> bool {
+    // The schedule holds changes of the jerk: a jerk of `amount` on one cycle only is a change
+    // by `amount` on it and back on the next.
+    let mut impulse =
+        |cycle: u64, amount: i64| schedule.push(cycle, amount) && schedule.push(cycle + 1, -amount);
+    impulse(start, -1)
+        && impulse(start + width, 1)
+        && impulse(start + span, 1)
+        && impulse(start + span + width, -1)
+}
+
+/// Where one notch pair of some width can go: the cycles its first notch can start on, those
+/// its second can, and the spans (second start − first start) that allows.
+#[derive(Debug, Clone, Copy)]
+struct NotchRoom {
+    firsts: (u64, u64),
+    seconds: (u64, u64),
+    spans: (u64, u64),
+}
+
+/// The cycles of a planned move on which its jerk can be lowered by one unit (`lower`) and
+/// raised by one unit (`raise`) within the jerk limit.
+struct Slack {
+    lower: Runs,
+    raise: Runs,
+}
+
+impl Slack {
+    fn of(schedule: &Schedule, total: u64, limits: Limits64) -> Self {
+        let jerk_limit = limits.jerk as i64;
+        let mut slack = Self {
+            lower: Runs::EMPTY,
+            raise: Runs::EMPTY,
+        };
+        jerk_runs(schedule, total, |start, end, jerk| {
+            if jerk > -jerk_limit {
+                slack.lower.push(start, end);
+            }
+            if jerk < jerk_limit {
+                slack.raise.push(start, end);
+            }
+            true
+        });
+        slack
+    }
+
+    /// Whether `found` holds for some room of a notch pair of `width` (it stops at the first).
+    fn any_room(&self, width: u64, mut found: impl FnMut(NotchRoom) -> bool) -> bool {
+        // The first notch lowers the jerk on its first cycle and raises it on the cycle `width`
+        // later; the second raises, then lowers.
+        let firsts = self.lower.meet_shifted(&self.raise, width);
+        let seconds = self.raise.meet_shifted(&self.lower, width);
+        for &first in firsts.as_slice() {
+            for &second in seconds.as_slice() {
+                if second.1 <= first.0 + 1 {
                     continue;
                 }
-                if dip_fits(schedule, start, x, y, limits) {
-                    if schedule.push_triple_box(start, -1, x, y, 1) {
-                        schedule.sort();
-                        left -= u128::from(x) * u128::from(y);
-                        placed = true;
-                    }
-                    break 'starts;
+                let shortest = second.0.saturating_sub(first.1 - 1).max(1);
+                let longest = (second.1 - 1) - first.0;
+                let room = NotchRoom {
+                    firsts: first,
+                    seconds: second,
+                    spans: (shortest, longest),
+                };
+                if shortest <= longest && found(room) {
+                    return true;
                 }
             }
         }
-        if !placed {
-            break;
+        false
+    }
+}
+
+/// Places a notch pair of `width` and `span` in `room`, keeping it if the whole schedule stays
+/// within the limits ([`within_limits`]).
+fn place_notch_pair(
+    schedule: &mut Schedule,
+    room: NotchRoom,
+    width: u64,
+    span: u64,
+    total: u64,
+    limits: Limits64,
+) -> bool {
+    let (first, second) = (room.firsts, room.seconds);
+    let low = first.0.max(second.0.saturating_sub(span));
+    let high = (first.1 - 1).min((second.1 - 1).saturating_sub(span));
+    if low > high {
+        return false;
+    }
+    // The middle first (away from the slow ends of the move), then either end.
+    for start in [low + (high - low) / 2, high, low] {
+        let mut candidate = *schedule;
+        if push_notch_pair(&mut candidate, start, width, span) {
+            candidate.sort();
+            if within_limits(&candidate, total, limits) {
+                *schedule = candidate;
+                return true;
+            }
         }
     }
-    left
+    false
+}
+
+/// The modular inverse of `value` modulo `modulus` (coprime, modulus ≥ 1).
+fn inverse_mod(value: i128, modulus: i128) -> i128 {
+    let (mut old_r, mut r) = (value.rem_euclid(modulus), modulus);
+    let (mut old_s, mut s) = (1i128, 0i128);
+    while r != 0 {
+        let q = old_r / r;
+        (old_r, r) = (r, old_r - q * r);
+        (old_s, s) = (s, old_s - q * s);
+    }
+    old_s.rem_euclid(modulus)
+}
+
+/// A solution of `w₁·k₁ + w₂·k₂ = left` with `k₁` and `k₂` in their (inclusive) ranges — the
+/// middle one of the solutions there.
+fn solve_two(
+    left: u128,
+    (w1, w2): (u64, u64),
+    range1: (u64, u64),
+    range2: (u64, u64),
+) -> Option<(u64, u64)> {
+    let (w1, w2, left) = (i128::from(w1), i128::from(w2), i128::try_from(left).ok()?);
+    let g = {
+        let (mut x, mut y) = (w1, w2);
+        while y != 0 {
+            (x, y) = (y, x % y);
+        }
+        x
+    };
+    if left % g != 0 {
+        return None;
+    }
+    let (a, b, e) = (w1 / g, w2 / g, left / g);
+    // k₁ ≡ e·a⁻¹ (mod b); then k₁ = k₁₀ + t·b, k₂ = k₂₀ − t·a for integer t.
+    let k1_0 = (e % b) * inverse_mod(a, b) % b;
+    let k2_0 = (e - a * k1_0) / b;
+    let (l1, u1) = (i128::from(range1.0), i128::from(range1.1));
+    let (l2, u2) = (i128::from(range2.0), i128::from(range2.1));
+    let t_low = floor_div(l1 - k1_0 + b - 1, b).max(floor_div(k2_0 - u2 + a - 1, a));
+    let t_high = floor_div(u1 - k1_0, b).min(floor_div(k2_0 - l2, a));
+    if t_low > t_high {
+        return None;
+    }
+    let t = t_low + (t_high - t_low) / 2;
+    Some((
+        u64::try_from(k1_0 + t * b).ok()?,
+        u64::try_from(k2_0 - t * a).ok()?,
+    ))
+}
+
+/// Takes exactly `left` off a sorted schedule of `total` cycles with one or two notch pairs, each
+/// checked against the limits; `false` (and the schedule unchanged) if none fits.
+///
+/// A pair takes `width · span`, its spans ranging over intervals (the distances between places
+/// with jerk to spare); with two pairs of widths `w₁, w₂`, `w₁·k₁ + w₂·k₂ = left` is a linear
+/// Diophantine equation solved exactly over those intervals.
+fn notch_pairs(schedule: &mut Schedule, left: u128, total: u64, limits: Limits64) -> bool {
+    if left == 0 {
+        return true;
+    }
+    let slack = Slack::of(schedule, total, limits);
+    // One pair: a width dividing what is left (spans are shorter than the move).
+    let narrowest = u64::try_from(left / u128::from(total.max(1)))
+        .unwrap_or(u64::MAX)
+        .max(1);
+    for width in narrowest..narrowest.saturating_add(64) {
+        let Ok(span) = u64::try_from(left / u128::from(width)) else {
+            continue;
+        };
+        if left % u128::from(width) == 0
+            && slack.any_room(width, |room| {
+                (room.spans.0..=room.spans.1).contains(&span)
+                    && place_notch_pair(schedule, room, width, span, total, limits)
+            })
+        {
+            return true;
+        }
+    }
+    // Two pairs. Their spans lie around the distance between the ramps (about half the move),
+    // so widths near `left / total` each. For each first width and room, the second width is
+    // what the rest needs at the spans a pair of the first width allows in each room (rooms of
+    // neighbouring widths differ little), tried at a few points of its range.
+    let guess = narrowest;
+    for scale in [8u64, 6, 11, 4, 16, 2, 32, 1] {
+        let w1 = (guess.saturating_mul(scale) / 8).max(1);
+        let placed = slack.any_room(w1, |room1| {
+            slack.any_room(w1, |estimate| {
+                second_widths(left, w1, room1.spans, estimate.spans).any(|w2| {
+                    slack.any_room(w2, |room2| {
+                        let Some((span1, span2)) =
+                            solve_two(left, (w1, w2), room1.spans, room2.spans)
+                        else {
+                            return false;
+                        };
+                        let mut candidate = *schedule;
+                        let fits =
+                            place_notch_pair(&mut candidate, room1, w1, span1, total, limits)
+                                && place_notch_pair(
+                                    &mut candidate,
+                                    room2,
+                                    w2,
+                                    span2,
+                                    total,
+                                    limits,
+                                );
+                        if fits {
+                            *schedule = candidate;
+                        }
+                        fits
+                    })
+                })
+            })
+        });
+        if placed {
+            return true;
+        }
+    }
+    false
+}
+
+/// The widths worth trying for the second of two notch pairs: what is left after the first
+/// (width `w1`, spans in `spans1`) divided by the spans `spans2`, at five points of that range.
+fn second_widths(
+    left: u128,
+    w1: u64,
+    spans1: (u64, u64),
+    spans2: (u64, u64),
+) -> impl Iterator<Item = u64> {
+    let rest_low = left.saturating_sub(u128::from(w1) * u128::from(spans1.1));
+    let rest_high = left.saturating_sub(u128::from(w1) * u128::from(spans1.0));
+    let low = rest_low.div_ceil(u128::from(spans2.1)).max(1);
+    let high = rest_high / u128::from(spans2.0);
+    let step = (high.saturating_sub(low) / 4).max(1);
+    (0..5u128)
+        .map(move |k| low + k * step)
+        .take_while(move |&w| w <= high)
+        .filter_map(|w| u64::try_from(w).ok())
 }
 
 /// Plans a move of `distance` (> 0, 2^-32 counts) within the limits: shapes near the
@@ -544,7 +1013,8 @@ fn plan(distance: u128, limits: Limits64) -> Schedule {
     let mut best: Option<Schedule> = None;
     for a in [a0 + 1, a0, a0.saturating_sub(1)] {
         if a > 0 {
-            scan_shapes(distance, a, b0 + 1, limits, &mut best);
+            let start = (b0 + 1).max(integer_ramp(distance, a, limits));
+            scan_shapes(distance, a, start, limits, &mut best);
         }
     }
     // Polish: the neighbours of the best shape, larger ones included.
@@ -554,7 +1024,7 @@ fn plan(distance: u128, limits: Limits64) -> Schedule {
     {
         for a in a1.saturating_sub(1).max(1)..=a1 + 1 {
             for b in b1.saturating_sub(2).max(a)..=b1 + 2 {
-                if let Some(candidate) = try_shape(distance, a, b, limits) {
+                if let Built::Plan(candidate) = try_shape(distance, a, b, limits, bound(&best)) {
                     keep_faster(&mut best, candidate);
                 }
             }
@@ -564,8 +1034,39 @@ fn plan(distance: u128, limits: Limits64) -> Schedule {
         // Ramps of one cycle always fit: the height is at most min(J, A) < 2^31 while a move is at
         // least 2^32 units, so c ≥ 3 = a + b + 1, and with a·b = 1 the early units take the whole
         // overshoot (no dips). The empty plan is never reached.
-        try_shape(distance, 1, 1, limits).unwrap_or(Schedule::EMPTY)
+        match try_shape(distance, 1, 1, limits, u64::MAX) {
+            Built::Plan(schedule) => schedule,
+            _ => Schedule::EMPTY,
+        }
     })
+}
+
+/// The longest second ramp `b` worth trying with first ramps of `a` cycles: the integer plan's
+/// peak acceleration `min(J·a, A)` can fall short of the maximum that the continuous optimum
+/// uses (the ramps are whole cycles), so its ramps may need to be longer — up to where the peak
+/// velocity reaches the maximum velocity, or the move needs no cruise.
+fn integer_ramp(distance: u128, a: u64, limits: Limits64) -> u64 {
+    let a_ = u128::from(a);
+    let peak = (u128::from(limits.jerk) * a_).min(u128::from(limits.acceleration));
+    let by_velocity = u128::from(limits.velocity) / peak + 1;
+    let covers = |b: u128| peak * b * (a_ + b) >= distance;
+    // b² + a·b ≥ distance/peak: a float guess, then exact steps.
+    let guess =
+        (-(a as f64) + Float::sqrt((a as f64).powi(2) + 4.0 * distance as f64 / peak as f64)) / 2.0;
+    let mut b = (guess.max(1.0) as u128).min(by_velocity);
+    while b < by_velocity && !covers(b) {
+        b += 1;
+    }
+    while b > 1 && covers(b - 1) {
+        b -= 1;
+    }
+    u64::try_from(b.min(by_velocity)).unwrap_or(u64::MAX).max(a)
+}
+
+/// The cycles a new plan must beat: the best plan's, if any.
+fn bound(best: &Option<Schedule>) -> u64 {
+    best.as_ref()
+        .map_or(u64::MAX, |schedule| schedule.plan.total)
 }
 
 /// Keeps `candidate` if it takes fewer cycles than the best plan so far.
@@ -577,6 +1078,9 @@ fn keep_faster(best: &mut Option<Schedule>, candidate: Schedule) {
         *best = Some(candidate);
     }
 }
+
+/// How many shapes past the largest that fits [`scan_shapes`] also tries.
+const NEIGHBOURS: u64 = 8;
 
 /// Searches shapes from ramps `(a, start)` toward shorter ones — `b` down to `a`, then both
 /// together — and keeps the plan with the fewest cycles. Shorter ramps lower the peak velocity and
@@ -597,11 +1101,14 @@ fn scan_shapes(distance: u128, a: u64, start: u64, limits: Limits64, best: &mut 
     };
     let attempt = |p: u64, best: &mut Option<Schedule>| -> bool {
         let (a, b) = shape(p);
-        let Some(candidate) = try_shape(distance, a, b, limits) else {
-            return false;
-        };
-        keep_faster(best, candidate);
-        true
+        match try_shape(distance, a, b, limits, bound(best)) {
+            Built::Plan(candidate) => {
+                keep_faster(best, candidate);
+                true
+            }
+            Built::Slower => true,
+            Built::Unfit => false,
+        }
     };
     // Doubling steps from the start until a shape fits.
     let mut fails = None;
@@ -619,19 +1126,19 @@ fn scan_shapes(distance: u128, a: u64, start: u64, limits: Limits64, best: &mut 
         step = step.saturating_mul(2);
     };
     // Bisect between the last shape that failed and the first that fits.
-    let (Some(mut good), Some(mut bad)) = (fits, fails) else {
+    let Some(mut good) = fits else {
         return;
     };
-    while good - bad > 1 {
+    while let Some(bad) = fails.filter(|&bad| good - bad > 1) {
         let middle = bad + (good - bad) / 2;
         if attempt(middle, best) {
             good = middle;
         } else {
-            bad = middle;
+            fails = Some(middle);
         }
     }
     // Neighbours: divisibility makes fitting not quite monotone, and the fastest may be nearby.
-    for p in good + 1..=(good + 32).min(last) {
+    for p in good + 1..=(good + NEIGHBOURS).min(last) {
         attempt(p, best);
     }
 }
@@ -968,6 +1475,110 @@ impl ProfileGenerator for SCurve {
             max_acceleration: acceleration,
             max_jerk: Some(I32F32::from_bits(self.limits.jerk as i64)),
             exempt: self.last_was_abrupt,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// The limits, cycle by cycle: the reference [`within_limits`] must agree with.
+    fn within_limits_by_cycle(schedule: &Schedule, total: u64, limits: Limits64) -> bool {
+        let (mut jerk, mut acceleration, mut velocity) = (0i128, 0i128, 0i128);
+        let changes = &schedule.changes[..schedule.count];
+        for cycle in 0..total {
+            jerk += changes
+                .iter()
+                .filter(|c| c.cycle == cycle)
+                .map(|c| i128::from(c.amount))
+                .sum::<i128>();
+            acceleration += jerk;
+            velocity += acceleration;
+            if jerk.abs() > i128::from(limits.jerk)
+                || acceleration.abs() > i128::from(limits.acceleration)
+                || !(0..=i128::from(limits.velocity)).contains(&velocity)
+            {
+                return false;
+            }
+        }
+        acceleration == 0 && velocity == 0
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(4_000))]
+
+        /// The closed-form check agrees with stepping every cycle, on random schedules (a
+        /// triple box and random jerk changes, so both verdicts occur).
+        #[test]
+        fn within_limits_agrees_with_stepping(
+            (a, b, c) in (1u64..6, 0u64..6, 0u64..12),
+            height in 1i64..4,
+            extra in proptest::collection::vec((0u64..40, -3i64..=3), 0..6),
+            (jerk, acceleration, velocity) in (1u64..8, 1u64..30, 1u64..200),
+        ) {
+            let (b, c) = (a + b, 2 * a + b + c);
+            let mut schedule = Schedule::EMPTY;
+            prop_assert!(schedule.push_triple_box(0, height, a, b, c));
+            for (cycle, amount) in extra {
+                prop_assert!(schedule.push(cycle, amount));
+            }
+            schedule.sort();
+            let limits = Limits64 { jerk, acceleration, velocity };
+            let total = a + b + c + 4;
+            prop_assert_eq!(
+                within_limits(&schedule, total, limits),
+                within_limits_by_cycle(&schedule, total, limits)
+            );
+        }
+
+        /// A notch pair takes exactly `width · span` off the distance and leaves the end at rest.
+        #[test]
+        fn a_notch_pair_takes_width_times_span(
+            start in 0u64..20, width in 1u64..20, span in 1u64..40,
+        ) {
+            let mut schedule = Schedule::EMPTY;
+            prop_assert!(push_notch_pair(&mut schedule, start, width, span));
+            schedule.sort();
+            let (mut jerk, mut acceleration, mut velocity, mut distance) = (0i64, 0i64, 0i64, 0i64);
+            for cycle in 0..start + span + width + 2 {
+                jerk += schedule.changes[..schedule.count]
+                    .iter()
+                    .filter(|c| c.cycle == cycle)
+                    .map(|c| c.amount)
+                    .sum::<i64>();
+                acceleration += jerk;
+                velocity += acceleration;
+                distance += velocity;
+                // ±1 on four cycles (two coincide, adding to 2, when the span equals the width).
+                let most = if span == width { 2 } else { 1 };
+                prop_assert!(jerk.abs() <= most);
+            }
+            prop_assert_eq!((acceleration, velocity), (0, 0));
+            prop_assert_eq!(distance, -((width * span) as i64));
+        }
+
+        /// Two notch-pair widths and spans: any solution found solves the equation, in range.
+        #[test]
+        fn solve_two_solves(
+            left in 1u128..1_000_000, w1 in 1u64..300, w2 in 1u64..300,
+            (l1, n1, l2, n2) in (1u64..3_000, 0u64..3_000, 1u64..3_000, 0u64..3_000),
+        ) {
+            if let Some((k1, k2)) = solve_two(left, (w1, w2), (l1, l1 + n1), (l2, l2 + n2)) {
+                prop_assert_eq!(u128::from(w1) * u128::from(k1) + u128::from(w2) * u128::from(k2), left);
+                prop_assert!((l1..=l1 + n1).contains(&k1) && (l2..=l2 + n2).contains(&k2));
+            } else {
+                // No solution: check by brute force over the smaller range.
+                for k1 in l1..=l1 + n1 {
+                    let rest = left.checked_sub(u128::from(w1) * u128::from(k1));
+                    if let Some(rest) = rest {
+                        let ok = rest % u128::from(w2) == 0
+                            && (u128::from(l2)..=u128::from(l2 + n2)).contains(&(rest / u128::from(w2)));
+                        prop_assert!(!ok, "missed k1 = {}", k1);
+                    }
+                }
+            }
         }
     }
 }
