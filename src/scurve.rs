@@ -86,9 +86,11 @@ pub struct ScurvePlan {
     /// Cycles from the first step to the last state (at the destination with velocity and
     /// acceleration zero), inclusive: the move is complete after this many steps.
     pub total: u64,
-    /// The peak acceleration the plan reaches, I32F32 bits.
+    /// The largest acceleration magnitude on any cycle of the move (speeding up or slowing
+    /// down), I32F32 bits: exactly what stepping the move shows.
     pub peak_acceleration: i64,
-    /// The peak velocity the plan reaches, I32F32 bits.
+    /// The largest velocity magnitude on any cycle of the move, I32F32 bits: exactly what
+    /// stepping the move shows.
     pub peak_velocity: i64,
 }
 
@@ -531,7 +533,6 @@ fn build_with_cruise(
     limits: Limits64,
 ) -> Option<Schedule> {
     let (a, b, _) = kinds[0];
-    let peak_acceleration: u128 = (0..3).map(|k| heights[k] * u128::from(kinds[k].0)).sum();
     let peak_velocity: u128 = (0..3).map(|k| heights[k] * kinds[k].2).sum();
     let cruise_velocity = peak_velocity - u128::from(notch);
     let total = a + b + c;
@@ -566,14 +567,12 @@ fn build_with_cruise(
     let cruise_velocity_bits = u64::try_from(cruise_velocity).ok()?;
     let finish = |mut schedule: Schedule| -> Option<Schedule> {
         schedule.sort();
-        if !within_limits(&schedule, total, limits) {
-            return None;
-        }
+        let peaks = peaks_within_limits(&schedule, total, limits)?;
         schedule.plan = ScurvePlan {
             phases: [a, b - a, a, c - a - b, a, b - a, a],
             total,
-            peak_acceleration: peak_acceleration as i64,
-            peak_velocity: cruise_velocity_bits as i64,
+            peak_acceleration: peaks.acceleration as i64,
+            peak_velocity: peaks.velocity as i64,
         };
         Some(schedule)
     };
@@ -704,47 +703,73 @@ fn floor_div(n: i128, d: i128) -> i128 {
     }
 }
 
-/// Whether every cycle of a sorted schedule of `total` cycles keeps |jerk| ≤ J,
-/// |acceleration| ≤ A and 0 ≤ velocity ≤ V, and ends at rest. Checked per run of constant jerk
-/// in closed form — on a run the acceleration is linear and the velocity quadratic, so the ends
-/// of the run and the velocity's turning point are the only cycles that can break a limit — which
-/// makes the check cost per jerk change, not per cycle.
-fn within_limits(schedule: &Schedule, total: u64, limits: Limits64) -> bool {
+/// The largest acceleration magnitude and the largest velocity of a move, I32F32 bits.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Peaks {
+    acceleration: u64,
+    velocity: u64,
+}
+
+/// The peaks of a sorted schedule of `total` cycles, if every cycle keeps |jerk| ≤ J,
+/// |acceleration| ≤ A and 0 ≤ velocity ≤ V and the move ends at rest; `None` otherwise. Checked
+/// per run of constant jerk in closed form — on a run the acceleration is linear and the
+/// velocity quadratic, so the ends of the run and the velocity's turning point are the only
+/// cycles that can break a limit or set a peak — which makes the check cost per jerk change, not
+/// per cycle.
+fn peaks_within_limits(schedule: &Schedule, total: u64, limits: Limits64) -> Option<Peaks> {
     let (j_max, a_max, v_max) = (
         i128::from(limits.jerk),
         i128::from(limits.acceleration),
         i128::from(limits.velocity),
     );
     let (mut acceleration, mut velocity) = (0i128, 0i128);
+    let (mut peak_acceleration, mut peak_velocity) = (0i128, 0i128);
     let fits = jerk_runs(schedule, total, |start, end, jerk| {
         let (jerk, cycles) = (i128::from(jerk), i128::from(end - start));
         // After m cycles of the run (1 ≤ m ≤ cycles).
         let acceleration_after = |m: i128| acceleration + jerk * m;
         let velocity_after = |m: i128| velocity + acceleration * m + jerk * m * (m + 1) / 2;
-        if jerk.abs() > j_max
-            || acceleration_after(1).abs() > a_max
-            || acceleration_after(cycles).abs() > a_max
-        {
+        let steepest = acceleration_after(1)
+            .abs()
+            .max(acceleration_after(cycles).abs());
+        if jerk.abs() > j_max || steepest > a_max {
             return false;
         }
-        let velocity_fits =
-            |m: i128| !(1..=cycles).contains(&m) || (0..=v_max).contains(&velocity_after(m));
         // The turning point of the velocity: m* = −acceleration/jerk − ½.
         let turn = if jerk == 0 {
             1
         } else {
             floor_div(-2 * acceleration - jerk, 2 * jerk)
         };
-        if ![1, cycles, turn, turn + 1].into_iter().all(velocity_fits) {
-            return false;
+        let mut fastest = 0;
+        for m in [1, cycles, turn, turn + 1] {
+            if (1..=cycles).contains(&m) {
+                let v = velocity_after(m);
+                if !(0..=v_max).contains(&v) {
+                    return false;
+                }
+                fastest = fastest.max(v);
+            }
         }
+        peak_acceleration = peak_acceleration.max(steepest);
+        peak_velocity = peak_velocity.max(fastest);
         let (next_acceleration, next_velocity) =
             (acceleration_after(cycles), velocity_after(cycles));
         acceleration = next_acceleration;
         velocity = next_velocity;
         true
     });
-    fits && acceleration == 0 && velocity == 0
+    (fits && acceleration == 0 && velocity == 0).then_some(Peaks {
+        // Within the limits, so within u64.
+        acceleration: peak_acceleration as u64,
+        velocity: peak_velocity as u64,
+    })
+}
+
+/// Whether a sorted schedule of `total` cycles stays within the limits; see
+/// [`peaks_within_limits`].
+fn within_limits(schedule: &Schedule, total: u64, limits: Limits64) -> bool {
+    peaks_within_limits(schedule, total, limits).is_some()
 }
 
 /// A *notch pair* takes `width · span` off a move without changing its length or its end: the

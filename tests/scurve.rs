@@ -263,7 +263,8 @@ proptest! {
     /// Random moves over the register ranges: the plan predicts the move, every cycle is within
     /// J, A and V (the conformance checker), the position is monotone and never passes the
     /// destination, and the last state is exactly the destination with velocity and acceleration
-    /// zero, within 4 cycles of the continuous optimum (SPEC §8).
+    /// zero, within 4 cycles of the continuous optimum (SPEC §8); the plan's peak velocity and
+    /// acceleration are the move's.
     #[test]
     fn random_moves(p in scurve_move()) {
         let mut axis = SCurve::new(p).unwrap();
@@ -273,6 +274,11 @@ proptest! {
         prop_assert_eq!(states.len() as u64, plan.total);
         let destination = I32F32::from_num(p.destination.to_bits());
         prop_assert_eq!(*states.last().unwrap(), State::at_rest(destination));
+        // The plan's peaks are the move's, to the raw unit.
+        let peak_velocity = states.iter().map(|s| s.velocity.abs()).max().unwrap();
+        let peak_acceleration = states.iter().map(|s| s.acceleration.abs()).max().unwrap();
+        prop_assert_eq!(peak_velocity.to_bits(), plan.peak_velocity);
+        prop_assert_eq!(peak_acceleration.to_bits(), plan.peak_acceleration);
         let best = optimum(&p, f64::from(p.destination.to_bits()).abs());
         prop_assert!(plan.total as f64 <= best + 4.0, "{} cycles, optimum {}", plan.total, best);
     }
