@@ -8,7 +8,7 @@ use profilegen::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAccelera
 use profilegen::reference::scurve_duration;
 use profilegen::{Error, ProfileGenerator, SCurve, ScurveParameters, State, StopKind};
 use proptest::prelude::*;
-use strategies::scurve_move;
+use strategies::{any_scurve_move, scurve_move};
 
 fn parameters(destination: f64, velocity: f64, acceleration: f64, jerk: f64) -> ScurveParameters {
     ScurveParameters {
@@ -281,6 +281,18 @@ proptest! {
         prop_assert_eq!(peak_acceleration.to_bits(), plan.peak_acceleration);
         let best = optimum(&p, f64::from(p.destination.to_bits()).abs());
         prop_assert!(plan.total as f64 <= best + 4.0, "{} cycles, optimum {}", plan.total, best);
+    }
+
+    /// Plans over the whole register ranges, moves of any length (too long to step): within 4
+    /// cycles of the continuous optimum, peaks within the limits.
+    #[test]
+    fn plans_of_any_length(p in any_scurve_move()) {
+        let plan = SCurve::new(p).unwrap().plan();
+        let best = optimum(&p, f64::from(p.destination.to_bits()).abs());
+        prop_assert!(plan.total as f64 <= best + 4.0, "{} cycles, optimum {}", plan.total, best);
+        prop_assert!(plan.peak_velocity <= i64::from(p.max_velocity.to_bits()) << 16);
+        prop_assert!(plan.peak_acceleration <= i64::from(p.max_acceleration.to_bits()) << 16);
+        prop_assert_eq!(plan.phases.iter().sum::<u64>(), plan.total);
     }
 
     /// Smooth stops at random cycles: jerk-limited (within J and A) down to rest, then complete.

@@ -227,3 +227,28 @@ pub fn scurve_move() -> impl Strategy<Value = ScurveParameters> {
             },
         )
 }
+
+/// Any S-curve move from rest at 0: every register over its whole range, log-uniform, with no
+/// bound on the move's length (up to ~7·10¹³ cycles) — for plans, not for stepping.
+pub fn any_scurve_move() -> impl Strategy<Value = ScurveParameters> {
+    (
+        log_uniform((1 << 30) - 1),
+        any::<bool>(),
+        log_uniform(MaxVelocity::MAX_BITS as u64),
+        log_uniform(ScurveAcceleration::MAX_BITS as u64),
+        log_uniform(Jerk::MAX_BITS as u64),
+    )
+        .prop_map(
+            |(distance, negative, velocity, acceleration, jerk)| ScurveParameters {
+                destination: Destination::from_bits(if negative {
+                    -(distance as i32)
+                } else {
+                    distance as i32
+                })
+                .unwrap(),
+                max_velocity: MaxVelocity::from_bits(velocity as u32).unwrap(),
+                max_acceleration: ScurveAcceleration::from_bits(acceleration as u16).unwrap(),
+                jerk: Jerk::from_bits(jerk as u32).unwrap(),
+            },
+        )
+}
