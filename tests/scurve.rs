@@ -289,6 +289,7 @@ proptest! {
     fn plans_of_any_length(p in any_scurve_move()) {
         let plan = SCurve::new(p).unwrap().plan();
         let best = optimum(&p, f64::from(p.destination.to_bits()).abs());
+        prop_assert!(plan.total > 0 && plan.peak_velocity > 0, "a move is planned");
         prop_assert!(plan.total as f64 <= best + 4.0, "{} cycles, optimum {}", plan.total, best);
         prop_assert!(plan.peak_velocity <= i64::from(p.max_velocity.to_bits()) << 16);
         prop_assert!(plan.peak_acceleration <= i64::from(p.max_acceleration.to_bits()) << 16);
