@@ -548,9 +548,9 @@ fn scan_shapes(distance: u128, a: u64, start: u64, limits: Limits64, best: &mut 
     let mut fails = None;
     let mut p = 0u64;
     let mut step = 1u64;
-    let fits = loop {
+    let mut good = loop {
         if attempt(p, best) {
-            break Some(p);
+            break p;
         }
         fails = Some(p);
         if p == last {
@@ -560,9 +560,6 @@ fn scan_shapes(distance: u128, a: u64, start: u64, limits: Limits64, best: &mut 
         step = step.saturating_mul(2);
     };
     // Bisect between the last shape that failed and the first that fits.
-    let Some(mut good) = fits else {
-        return;
-    };
     while let Some(bad) = fails.filter(|&bad| good - bad > 1) {
         let middle = bad + (good - bad) / 2;
         if attempt(middle, best) {
@@ -583,8 +580,9 @@ const LOWERING_TRIES: u128 = 48;
 /// The main move's kinds of unit: `(ramp a, ramp b, area a·b)`; see [`try_shape`].
 type Kinds = [(u64, u64, u128); 3];
 
-/// Tries one shape of the main move, ramps `a ≤ b`; `None` if the distance is too short for it,
-/// its peak velocity cannot be brought within the maximum, or the remainder does not fit.
+/// Tries one shape of the main move, ramps `a ≤ b`: its fastest plan, or [`Built::Slower`] if
+/// it cannot take fewer than `bound` cycles, or [`Built::Unfit`] if the distance is too short for
+/// it, its peak velocity cannot be brought within the maximum, or the remainder does not fit.
 ///
 /// The main move is a sum of triple boxes whose heights add up to `h` (the jerk of phase I):
 /// `h₀·tb(a, b, ·) + h₁·tb(a, b−1, ·) + h₂·tb(a−1, b, ·)`. Each unit moved from the first kind to
@@ -636,9 +634,6 @@ fn try_shape(distance: u128, a: u64, b: u64, limits: Limits64, bound: u64) -> Bu
             break;
         }
         let rest = over.saturating_sub(h2 * b_);
-        if h2 > h {
-            break;
-        }
         // Just enough of the second kind, just too few, and as many as there are units left.
         for h1 in [rest / a_, rest.div_ceil(a_), (rest / a_).min(h - h2)] {
             if (h1 > 0 && !usable(1)) || h1 + h2 > h {
@@ -763,22 +758,24 @@ fn build_shape(
     // A cycle more of cruise where the remainder of the shortest fits nowhere: it is then at
     // least a whole cruise cycle's worth, which notch pairs can always take.
     (shortest..=shortest + 1)
-        .find_map(|c| build_with_cruise(distance, kinds, heights, notch, c, limits))
+        .find_map(|c| {
+            build_with_cruise(distance, kinds, heights, notch, cruise_velocity, c, limits)
+        })
         .map_or(Built::Unfit, Built::Plan)
 }
 
-/// [`build_shape`] with the deceleration starting on cycle `c`.
+/// [`build_shape`] with the deceleration starting on cycle `c`, the cruise at `cruise_velocity`
+/// (the main move's peak less the velocity notch).
 fn build_with_cruise(
     distance: u128,
     kinds: Kinds,
     heights: [u128; 3],
     notch: u64,
+    cruise_velocity: u128,
     c: u64,
     limits: Limits64,
 ) -> Option<Schedule> {
     let (a, b, _) = kinds[0];
-    let peak_velocity: u128 = (0..3).map(|k| heights[k] * kinds[k].2).sum();
-    let cruise_velocity = peak_velocity - u128::from(notch);
     let total = a + b + c;
     let over = u128::from(c) * cruise_velocity - distance;
     let mut early = [0u128; 3];
@@ -835,21 +832,20 @@ fn build_with_cruise(
             return Some(plan);
         }
     }
-    // Notch pairs, with what is left or with one early unit fewer (a notch pair takes at least
-    // about the distance between the ramps, so a small remainder may need more).
-    let mut fewer_early = early;
-    let mut more_left = left;
-    if let Some(k) = (0..3).rev().find(|&k| early[k] > 0) {
-        fewer_early[k] -= 1;
-        more_left += kinds[k].2;
-    }
-    for (early, left) in [(early, left), (fewer_early, more_left)] {
-        let mut notched = main_move(early)?;
-        if notch_pairs(&mut notched, left, total, limits) {
-            if let Some(plan) = finish(notched) {
-                return Some(plan);
-            }
+    // Notch pairs, with what is left or, if that fails, with one early unit fewer (a notch pair
+    // takes at least about the distance between the ramps, so a small remainder may need more).
+    let mut notched = schedule;
+    if notch_pairs(&mut notched, left, total, limits) {
+        if let Some(plan) = finish(notched) {
+            return Some(plan);
         }
+    }
+    let k = (0..3).rev().find(|&k| early[k] > 0)?;
+    let mut fewer_early = early;
+    fewer_early[k] -= 1;
+    let mut notched = main_move(fewer_early)?;
+    if notch_pairs(&mut notched, left + kinds[k].2, total, limits) {
+        return finish(notched);
     }
     None
 }
@@ -1516,26 +1512,33 @@ mod tests {
     use super::*;
     use proptest::prelude::*;
 
-    /// The limits, cycle by cycle: the reference [`within_limits`] must agree with.
-    fn within_limits_by_cycle(schedule: &Schedule, total: u64, limits: Limits64) -> bool {
+    /// `(jerk, acceleration, velocity)` on each of `total` cycles, by stepping the schedule one
+    /// cycle at a time (the plain way the closed forms are checked against).
+    fn by_cycle(schedule: &Schedule, total: u64) -> Vec<(i128, i128, i128)> {
         let (mut jerk, mut acceleration, mut velocity) = (0i128, 0i128, 0i128);
         let changes = &schedule.changes[..schedule.count];
-        for cycle in 0..total {
-            jerk += changes
-                .iter()
-                .filter(|c| c.cycle == cycle)
-                .map(|c| i128::from(c.amount))
-                .sum::<i128>();
-            acceleration += jerk;
-            velocity += acceleration;
-            if jerk.abs() > i128::from(limits.jerk)
-                || acceleration.abs() > i128::from(limits.acceleration)
-                || !(0..=i128::from(limits.velocity)).contains(&velocity)
-            {
-                return false;
-            }
-        }
-        acceleration == 0 && velocity == 0
+        (0..total)
+            .map(|cycle| {
+                jerk += changes
+                    .iter()
+                    .filter(|c| c.cycle == cycle)
+                    .map(|c| i128::from(c.amount))
+                    .sum::<i128>();
+                acceleration += jerk;
+                velocity += acceleration;
+                (jerk, acceleration, velocity)
+            })
+            .collect()
+    }
+
+    /// The limits, cycle by cycle: the reference [`within_limits`] must agree with.
+    fn within_limits_by_cycle(schedule: &Schedule, total: u64, limits: Limits64) -> bool {
+        let cycles = by_cycle(schedule, total);
+        cycles.iter().all(|&(jerk, acceleration, velocity)| {
+            jerk.abs() <= i128::from(limits.jerk)
+                && acceleration.abs() <= i128::from(limits.acceleration)
+                && (0..=i128::from(limits.velocity)).contains(&velocity)
+        }) && cycles.last().is_none_or(|&(_, a, v)| a == 0 && v == 0)
     }
 
     proptest! {
@@ -1573,22 +1576,14 @@ mod tests {
             let mut schedule = Schedule::EMPTY;
             prop_assert!(push_notch_pair(&mut schedule, start, width, span));
             schedule.sort();
-            let (mut jerk, mut acceleration, mut velocity, mut distance) = (0i64, 0i64, 0i64, 0i64);
-            for cycle in 0..start + span + width + 2 {
-                jerk += schedule.changes[..schedule.count]
-                    .iter()
-                    .filter(|c| c.cycle == cycle)
-                    .map(|c| c.amount)
-                    .sum::<i64>();
-                acceleration += jerk;
-                velocity += acceleration;
-                distance += velocity;
-                // ±1 on four cycles (two coincide, adding to 2, when the span equals the width).
-                let most = if span == width { 2 } else { 1 };
-                prop_assert!(jerk.abs() <= most);
-            }
+            let cycles = by_cycle(&schedule, start + span + width + 2);
+            // ±1 on four cycles (two coincide, adding to 2, when the span equals the width).
+            let most = if span == width { 2 } else { 1 };
+            prop_assert!(cycles.iter().all(|&(jerk, _, _)| jerk.abs() <= most));
+            let &(_, acceleration, velocity) = cycles.last().unwrap();
             prop_assert_eq!((acceleration, velocity), (0, 0));
-            prop_assert_eq!(distance, -((width * span) as i64));
+            let distance: i128 = cycles.iter().map(|&(_, _, velocity)| velocity).sum();
+            prop_assert_eq!(distance, -i128::from(width * span));
         }
 
         /// Two notch-pair widths and spans: any solution found solves the equation, in range.
