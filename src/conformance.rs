@@ -160,6 +160,9 @@ pub fn check_abrupt_stop<G: ProfileGenerator + ?Sized>(generator: &mut G) -> Res
 #[derive(Debug, Clone)]
 pub struct Checker {
     previous: State,
+    /// The previous cycle was an abrupt stop: the axis is at rest with zero acceleration after
+    /// it (SPEC §9), so the next cycle's jerk counts from zero, not from the drop.
+    previous_exempt: bool,
     was_complete: bool,
     cycle: u64,
 }
@@ -169,6 +172,7 @@ impl Checker {
     pub fn new<G: ProfileGenerator + ?Sized>(generator: &G) -> Self {
         Self {
             previous: generator.state(),
+            previous_exempt: false,
             was_complete: generator.is_complete(),
             cycle: 0,
         }
@@ -199,7 +203,11 @@ impl Checker {
             limits,
         };
         check_identities(&self.previous, &next).map_err(violation)?;
-        check_limits(&self.previous, &next, &limits).map_err(violation)?;
+        let mut from = self.previous;
+        if self.previous_exempt {
+            from.acceleration = I32F32::ZERO;
+        }
+        check_limits(&from, &next, &limits).map_err(violation)?;
         if self.was_complete
             && next != State::at_rest(self.previous.position)
             && next != self.previous
@@ -207,6 +215,7 @@ impl Checker {
             return Err(violation(Rule::MovedWhileComplete));
         }
         self.previous = next;
+        self.previous_exempt = limits.exempt;
         self.was_complete = generator.is_complete();
         Ok(next)
     }

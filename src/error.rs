@@ -42,6 +42,15 @@ pub enum Error {
         /// Why, e.g. "while an S-curve move is in motion".
         reason: &'static str,
     },
+    /// No move within the limits reaches the target (for example a destination one raw unit
+    /// away with a jerk of one raw unit, which would need a jerk of two).
+    #[error("{parameter} cannot be reached: {reason}")]
+    Unreachable {
+        /// The parameter whose value cannot be reached.
+        parameter: &'static str,
+        /// Why, and what to change.
+        reason: &'static str,
+    },
     /// A microstep resolution that the waveform table does not support.
     #[error("microsteps per full step is {value}: the legal values are 1, 2, 4, 8, 16, 32, 64, 128, 256")]
     Microsteps {

@@ -246,13 +246,132 @@ fn abrupt_stop() {
         MaxVelocity::ZERO,
         "the velocity register is cleared"
     );
+    // A destination alone cannot restart the axis: the error says why and how.
+    let refused = axis.set_destination(Destination::ZERO).unwrap_err();
     assert!(matches!(
-        axis.set_destination(Destination::ZERO),
-        Err(Error::Zero {
-            parameter: "velocity",
+        refused,
+        Error::Refused {
+            parameter: "destination",
             ..
-        })
+        }
     ));
+    assert!(
+        refused.to_string().contains("velocity register"),
+        "{refused}"
+    );
+    assert!(axis.is_complete(), "a refused command changes nothing");
+}
+
+/// After either stop, one call with a destination and a velocity starts a move from where the
+/// axis rests, and it lands exactly (SPEC §9: the stop cleared the velocity register).
+#[test]
+fn restart_after_a_stop() {
+    for kind in [StopKind::Smooth, StopKind::Abrupt] {
+        for stop_at in [1, 30, 80, 150] {
+            let mut axis = SCurve::new(parameters(1_000.0, 2.0, 0.1, 0.01)).unwrap();
+            let mut checker = Checker::new(&axis);
+            for _ in 0..stop_at {
+                checker.step(&mut axis).unwrap();
+            }
+            axis.stop(kind);
+            while !axis.is_complete() {
+                checker.step(&mut axis).unwrap();
+            }
+            // Restart on the very cycle the stop completes (after an abrupt stop its
+            // acceleration is still the drop).
+            axis.restart(
+                Destination::from_num(-300.0).unwrap(),
+                MaxVelocity::from_num(3.0).unwrap(),
+            )
+            .unwrap();
+            assert_eq!(
+                axis.parameters().max_velocity,
+                MaxVelocity::from_num(3.0).unwrap()
+            );
+            // The checker, told of the new command, checks the restarted move too.
+            checker.command_given(&axis);
+            let mut last = axis.state();
+            while !axis.is_complete() {
+                last = checker.step(&mut axis).unwrap();
+            }
+            assert_eq!(
+                last,
+                State::at_rest(I32F32::from_num(-300)),
+                "{kind:?} at {stop_at}"
+            );
+        }
+    }
+}
+
+/// Every distance a jerk-limited move can cover is covered exactly, however small — including
+/// the fractional ones a stop leaves — and the one it cannot (a raw unit with a jerk of a raw
+/// unit, which would need a jerk of 2) is a typed error, not a silent no-op.
+#[test]
+fn every_movable_distance_moves() {
+    let most = ScurveParameters {
+        destination: Destination::from_bits(1).unwrap(),
+        max_velocity: MaxVelocity::from_bits(MaxVelocity::MAX_BITS).unwrap(),
+        max_acceleration: ScurveAcceleration::from_bits(ScurveAcceleration::MAX_BITS).unwrap(),
+        jerk: Jerk::from_bits(Jerk::MAX_BITS).unwrap(),
+    };
+    // Half a count, every register at its maximum (the reproducer).
+    let mut axis = SCurve::with_position(most, I32F32::from_bits(1 << 31)).unwrap();
+    let states = run_move(&mut axis).unwrap();
+    assert_eq!(*states.last().unwrap(), State::at_rest(I32F32::from_num(1)));
+    // A stop leaves a fraction; a slow move from there (the second reproducer).
+    let start = I32F32::from_bits(3_600_973_329_122_459_033);
+    let first = ScurveParameters {
+        destination: Destination::from_bits(838_416_936).unwrap(),
+        max_velocity: MaxVelocity::from_bits(50_459_415).unwrap(),
+        max_acceleration: ScurveAcceleration::from_bits(336).unwrap(),
+        jerk: Jerk::from_bits(1_633).unwrap(),
+    };
+    let mut axis = SCurve::with_position(first, start).unwrap();
+    for _ in 0..377 {
+        axis.step();
+    }
+    axis.stop(StopKind::Smooth);
+    while !axis.is_complete() {
+        axis.step();
+    }
+    let then = ScurveParameters {
+        max_velocity: MaxVelocity::from_bits(1).unwrap(),
+        max_acceleration: ScurveAcceleration::from_bits(523).unwrap(),
+        jerk: Jerk::from_bits(1_829).unwrap(),
+        ..first
+    };
+    axis.set_parameters(then).unwrap();
+    let states = run_move(&mut axis).unwrap();
+    assert_eq!(
+        *states.last().unwrap(),
+        State::at_rest(I32F32::from_num(838_416_936))
+    );
+    // One raw unit: with a jerk of 2 raw units it moves (velocity 1 on one cycle) ...
+    for (jerk, movable) in [(2, true), (1, false)] {
+        let p = ScurveParameters {
+            jerk: Jerk::from_bits(jerk).unwrap(),
+            ..most
+        };
+        let from = I32F32::from_bits((1 << 32) - 1);
+        match SCurve::with_position(p, from) {
+            Ok(mut axis) => {
+                assert!(movable);
+                let states = run_move(&mut axis).unwrap();
+                assert_eq!(*states.last().unwrap(), State::at_rest(I32F32::from_num(1)));
+            }
+            // ... with a jerk of 1 raw unit it cannot, and says so.
+            Err(error) => {
+                assert!(!movable);
+                assert!(matches!(
+                    error,
+                    Error::Unreachable {
+                        parameter: "destination",
+                        ..
+                    }
+                ));
+            }
+        }
+    }
 }
 
 proptest! {
@@ -279,6 +398,29 @@ proptest! {
         prop_assert_eq!(peak_acceleration.to_bits(), plan.peak_acceleration);
         let best = optimum(&p, f64::from(p.destination.to_bits()).abs());
         prop_assert!(plan.total as f64 <= best + 4.0, "{} cycles, optimum {}", plan.total, best);
+    }
+
+    /// Moves of a few raw units to a few counts from fractional positions (what stops leave),
+    /// every register across its range: exact arrival within the limits, or — only for one raw
+    /// unit with a jerk of one raw unit — a typed error.
+    #[test]
+    fn tiny_moves_from_fractions(
+        p in any_scurve_move(),
+        offset in prop_oneof![1i64..64, 1i64..(1 << 36)],
+        negative in any::<bool>(),
+    ) {
+        let target = i64::from(p.destination.to_bits()) << 32;
+        let start = I32F32::from_bits(if negative { target - offset } else { target + offset });
+        match SCurve::with_position(p, start) {
+            Ok(mut axis) => {
+                let states = run_move(&mut axis)?;
+                prop_assert_eq!(*states.last().unwrap(), State::at_rest(I32F32::from_bits(target)));
+                prop_assert_eq!(states.len() as u64, axis.plan().total);
+            }
+            Err(error) => {
+                prop_assert!(offset == 1 && p.jerk.to_bits() == 1, "{error}");
+            }
+        }
     }
 
     /// Plans over the whole register ranges, moves of any length (too long to step): within 4

@@ -1,0 +1,548 @@
+//! MC1451A seven-phase S-curve point-to-point (SPEC §8): jerk-limited, planned before the first
+//! step in a bounded number of integer operations, exact on arrival.
+//!
+//! The pieces, one file each:
+//!
+//! - this file: the generator, its commands and its stepping (four additions and a countdown
+//!   per cycle; everything else happens on the few cycles where the jerk changes);
+//! - [`search`]: the continuous optimum in integers and the fixed set of integer shapes tried,
+//!   fastest first;
+//! - [`shape`]: the shape algebra — the main move as units of triple boxes, and the unit mix
+//!   that meets the maximum acceleration and velocity to the raw unit;
+//! - [`remainder`]: the notch pairs that take the last of the distance, and the Diophantine
+//!   solver that sizes them;
+//! - [`schedule`]: the sorted jerk changes, built once for the winner, and the pass that finds
+//!   its peaks;
+//! - [`stop`]: the jerk-limited smooth stop.
+//!
+//! How a move lands exactly is told once, on [`search::search`]'s `complete`: whole cycles of
+//! cruise overshoot the distance, units whose cruise ends a cycle early take whole multiples of
+//! their areas, and notch pairs take the rest.
+//!
+//! # Duration
+//!
+//! Every plan is within 3 cycles of the continuous-time optimum
+//! ([`crate::reference::scurve_duration`]); the `planning` bench measures the distribution over
+//! random moves across the register ranges. The integer plan may keep a cycle or two of
+//! constant acceleration below the maximum (phases II/VI) where the continuous optimum has none;
+//! [`ScurvePlan::phases`] reports the phases of the move's main units as they are.
+
+mod remainder;
+mod schedule;
+mod search;
+mod shape;
+mod stop;
+
+use fixed::types::I32F32;
+
+use crate::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
+use crate::state::{Limits, ProfileGenerator, State, StopKind};
+use crate::Error;
+use schedule::{Limits64, Schedule};
+
+/// The parameters of an S-curve move, in MC1451A register formats.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ScurveParameters {
+    /// Destination, counts (±2³⁰).
+    pub destination: Destination,
+    /// Maximum velocity, counts/cycle (1/2¹⁶), non-zero.
+    pub max_velocity: MaxVelocity,
+    /// Maximum acceleration, counts/cycle² (16 bits, 1/2¹⁶), non-zero.
+    pub max_acceleration: ScurveAcceleration,
+    /// Jerk, counts/cycle³ (1/2³²), non-zero.
+    pub jerk: Jerk,
+}
+
+/// The plan of a move, known before its first step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct ScurvePlan {
+    /// Cycles in phases I–VII of the move's main units (II/VI are zero when the maximum
+    /// acceleration is not reached, IV when the maximum velocity is not).
+    pub phases: [u64; 7],
+    /// Cycles from the first step to the last state (at the destination with velocity and
+    /// acceleration zero), inclusive: the move is complete after this many steps.
+    pub total: u64,
+    /// The largest acceleration magnitude on any cycle of the move (speeding up or slowing
+    /// down), I32F32 bits: exactly what stepping the move shows.
+    pub peak_acceleration: i64,
+    /// The largest velocity magnitude on any cycle of the move, I32F32 bits: exactly what
+    /// stepping the move shows.
+    pub peak_velocity: i64,
+}
+
+/// Whether the axis is moving, and how.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Motion {
+    /// At rest: complete.
+    Rest,
+    /// Following the plan.
+    Planned,
+    /// Smooth stop: jerk-limited deceleration to rest.
+    Stopping,
+    /// Abrupt stop on the next cycle.
+    AbruptPending,
+}
+
+/// The MC1451A S-curve point-to-point generator.
+///
+/// ```
+/// use profilegen::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
+/// use profilegen::{ProfileGenerator, SCurve, ScurveParameters};
+///
+/// // The datasheet's numbers: velocity 2.75, acceleration 0.175, jerk 0.0075.
+/// let mut axis = SCurve::new(ScurveParameters {
+///     destination: Destination::from_num(1_000.0)?,
+///     max_velocity: MaxVelocity::from_num(2.75)?,
+///     max_acceleration: ScurveAcceleration::from_num(0.175)?,
+///     jerk: Jerk::from_num(0.0075)?,
+/// })?;
+/// let plan = axis.plan();
+/// let states: Vec<_> = axis.states_until_complete().collect();
+/// assert_eq!(states.len() as u64, plan.total);
+/// assert_eq!(states.last().unwrap().position, 1_000);
+/// # Ok::<(), profilegen::Error>(())
+/// ```
+#[derive(Debug, Clone)]
+pub struct SCurve {
+    /// The state after the last step: its acceleration and velocity are the integrators.
+    state: State,
+    /// The jerk the next step adds to the acceleration, I32F32 bits, direction included.
+    jerk: i64,
+    /// Steps until the next event: a jerk change, the end of the move, a stop's next cycle.
+    countdown: u64,
+    /// Index of the next jerk change in the schedule.
+    next_change: usize,
+    /// While the plan is followed, one past the index of the schedule's end marker: changes
+    /// before it are replayed on the fast path of [`ProfileGenerator::step`]; 0 otherwise
+    /// (every event takes the slow path). The move is complete once the marker is replayed.
+    replay_end: usize,
+    /// A correction to the jerk that the next event takes back (a move started right after an
+    /// abrupt stop starts from that cycle's acceleration).
+    offset: i64,
+    motion: Motion,
+    /// +1 or −1: the direction of the move.
+    direction: i64,
+    /// The last step was an abrupt stop (exempt from the limits).
+    exempt: bool,
+    /// After a stop the velocity register reads zero (SPEC §9).
+    velocity_cleared: bool,
+    parameters: ScurveParameters,
+    limits: Limits64,
+    schedule: Schedule,
+}
+
+const REFUSED_IN_MOTION: &str = "while an S-curve move is in motion (MC1451A command error)";
+
+fn check(parameters: &ScurveParameters) -> Result<Limits64, Error> {
+    if parameters.max_velocity.is_zero() {
+        return Err(Error::Zero {
+            parameter: "velocity",
+            range: MaxVelocity::RANGE,
+        });
+    }
+    if parameters.max_acceleration.is_zero() {
+        return Err(Error::Zero {
+            parameter: "acceleration",
+            range: ScurveAcceleration::RANGE,
+        });
+    }
+    if parameters.jerk.is_zero() {
+        return Err(Error::Zero {
+            parameter: "jerk",
+            range: Jerk::RANGE,
+        });
+    }
+    // To I32F32 bits: velocity and acceleration are 1/2^16 (shift 16), jerk is 1/2^32 already.
+    Ok(Limits64 {
+        jerk: u64::from(parameters.jerk.to_bits()),
+        acceleration: u64::from(parameters.max_acceleration.to_bits()) << 16,
+        velocity: u64::from(parameters.max_velocity.to_bits()) << 16,
+    })
+}
+
+/// Plans the move from `position` (at rest) to `parameters.destination` into `out`, and returns
+/// its direction.
+fn plan_move(
+    parameters: &ScurveParameters,
+    limits: Limits64,
+    position: I32F32,
+    out: &mut Schedule,
+) -> Result<i64, Error> {
+    let target = i64::from(parameters.destination.to_bits()) << 32;
+    // The signed distance modulo the 32-bit position register: the short way round.
+    let distance = target.wrapping_sub(position.to_bits());
+    let direction = if distance < 0 { -1 } else { 1 };
+    let magnitude = distance.unsigned_abs();
+    if magnitude == 0 {
+        out.clear();
+        return Ok(direction);
+    }
+    if magnitude == 1 {
+        // One raw unit: a velocity of 1 on one cycle jerks by +1, −2, +1.
+        if limits.jerk < 2 {
+            return Err(Error::Unreachable {
+                parameter: "destination",
+                reason: "it is 2^-32 counts away, and moving that little needs a jerk of 2^-31 \
+                         counts/cycle³ (2 raw units): raise the jerk or choose another destination",
+            });
+        }
+        out.single_unit(direction);
+        return Ok(direction);
+    }
+    if search::search(magnitude, direction, limits, out) {
+        Ok(direction)
+    } else {
+        Err(Error::Unreachable {
+            parameter: "destination",
+            reason: "no plan within the limits was found (please report this move)",
+        })
+    }
+}
+
+impl SCurve {
+    /// A generator at rest at position 0, with the move to `parameters.destination` planned; it
+    /// starts on the first step.
+    ///
+    /// # Errors
+    /// [`Error::Zero`] for a zero maximum velocity, maximum acceleration or jerk;
+    /// [`Error::Unreachable`] for a destination 2^-32 counts away with a jerk of 2^-32
+    /// counts/cycle³, the one distance no jerk-limited move can cover.
+    pub fn new(parameters: ScurveParameters) -> Result<Self, Error> {
+        Self::with_position(parameters, I32F32::ZERO)
+    }
+
+    /// As [`Self::new`], starting at rest at `position`.
+    ///
+    /// # Errors
+    /// As [`Self::new`].
+    pub fn with_position(parameters: ScurveParameters, position: I32F32) -> Result<Self, Error> {
+        let limits = check(&parameters)?;
+        let mut generator = Self {
+            state: State::at_rest(position),
+            jerk: 0,
+            countdown: u64::MAX,
+            next_change: 0,
+            replay_end: 0,
+            offset: 0,
+            motion: Motion::Rest,
+            direction: 1,
+            exempt: false,
+            velocity_cleared: false,
+            parameters,
+            limits,
+            schedule: Schedule::EMPTY,
+        };
+        // Planned in place: the schedule is the largest part of the generator.
+        generator.direction = plan_move(&parameters, limits, position, &mut generator.schedule)?;
+        generator.start();
+        Ok(generator)
+    }
+
+    /// The plan of the present move (all zero when at rest with nothing to do).
+    pub fn plan(&self) -> ScurvePlan {
+        self.schedule.plan
+    }
+
+    /// The parameters in force (after a stop the maximum velocity reads zero).
+    pub fn parameters(&self) -> ScurveParameters {
+        let mut parameters = self.parameters;
+        if self.velocity_cleared {
+            parameters.max_velocity = MaxVelocity::ZERO;
+        }
+        parameters
+    }
+
+    /// New parameters: at rest, they start a new move from the present position.
+    ///
+    /// # Errors
+    /// [`Error::Refused`] while moving (the MC1451A "command error"; nothing changes);
+    /// [`Error::Zero`] for a zero maximum velocity, acceleration or jerk;
+    /// [`Error::Unreachable`] as for [`Self::new`]. Nothing changes on an error.
+    pub fn set_parameters(&mut self, parameters: ScurveParameters) -> Result<(), Error> {
+        if !self.is_complete() {
+            return Err(Error::Refused {
+                parameter: "S-curve parameters",
+                reason: REFUSED_IN_MOTION,
+            });
+        }
+        let limits = check(&parameters)?;
+        // Planned aside: a refused plan changes nothing.
+        let mut schedule = Schedule::EMPTY;
+        let direction = plan_move(&parameters, limits, self.state.position, &mut schedule)?;
+        self.parameters = parameters;
+        self.limits = limits;
+        self.schedule = schedule;
+        self.direction = direction;
+        self.velocity_cleared = false;
+        self.start();
+        Ok(())
+    }
+
+    /// A new destination, keeping the other parameters; as [`Self::set_parameters`].
+    ///
+    /// # Errors
+    /// As [`Self::set_parameters`]; after a stop, [`Error::Refused`]: the stop cleared the
+    /// velocity register, so a new move needs a velocity too ([`Self::restart`]).
+    pub fn set_destination(&mut self, destination: Destination) -> Result<(), Error> {
+        if self.velocity_cleared && self.is_complete() {
+            return Err(Error::Refused {
+                parameter: "destination",
+                reason: "alone after a stop: the stop cleared the velocity register; give the \
+                         destination with a velocity (SCurve::restart, or set_parameters)",
+            });
+        }
+        self.set_parameters(ScurveParameters {
+            destination,
+            ..self.parameters()
+        })
+    }
+
+    /// After a smooth or abrupt stop (or at any time at rest): a new destination and a new
+    /// maximum velocity together, keeping the acceleration and jerk, start a move from where the
+    /// axis rests — the MC1451A way to restart after a stop cleared the velocity register.
+    ///
+    /// ```
+    /// use profilegen::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
+    /// use profilegen::{ProfileGenerator, SCurve, ScurveParameters, StopKind};
+    ///
+    /// let mut axis = SCurve::new(ScurveParameters {
+    ///     destination: Destination::from_num(1_000.0)?,
+    ///     max_velocity: MaxVelocity::from_num(2.0)?,
+    ///     max_acceleration: ScurveAcceleration::from_num(0.1)?,
+    ///     jerk: Jerk::from_num(0.01)?,
+    /// })?;
+    /// axis.states().take(40).for_each(drop);
+    /// axis.stop(StopKind::Smooth);
+    /// axis.states_until_complete().for_each(drop);
+    /// axis.restart(Destination::from_num(-500.0)?, MaxVelocity::from_num(3.0)?)?;
+    /// let last = axis.states_until_complete().last().unwrap();
+    /// assert_eq!(last.position, -500);
+    /// # Ok::<(), profilegen::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// As [`Self::set_parameters`].
+    pub fn restart(
+        &mut self,
+        destination: Destination,
+        max_velocity: MaxVelocity,
+    ) -> Result<(), Error> {
+        self.set_parameters(ScurveParameters {
+            destination,
+            max_velocity,
+            ..self.parameters
+        })
+    }
+
+    /// A new maximum velocity; as [`Self::set_parameters`].
+    ///
+    /// # Errors
+    /// As [`Self::set_parameters`].
+    pub fn set_max_velocity(&mut self, max_velocity: MaxVelocity) -> Result<(), Error> {
+        self.set_parameters(ScurveParameters {
+            max_velocity,
+            ..self.parameters()
+        })
+    }
+
+    /// A new maximum acceleration; as [`Self::set_parameters`].
+    ///
+    /// # Errors
+    /// As [`Self::set_parameters`].
+    pub fn set_max_acceleration(
+        &mut self,
+        max_acceleration: ScurveAcceleration,
+    ) -> Result<(), Error> {
+        self.set_parameters(ScurveParameters {
+            max_acceleration,
+            ..self.parameters()
+        })
+    }
+
+    /// A new jerk; as [`Self::set_parameters`].
+    ///
+    /// # Errors
+    /// As [`Self::set_parameters`].
+    pub fn set_jerk(&mut self, jerk: Jerk) -> Result<(), Error> {
+        self.set_parameters(ScurveParameters {
+            jerk,
+            ..self.parameters()
+        })
+    }
+
+    /// Starts the planned move (or rests, if it is empty) on the next step.
+    fn start(&mut self) {
+        self.exempt = false;
+        self.offset = 0;
+        if self.schedule.plan.total == 0 {
+            self.rest();
+            return;
+        }
+        self.motion = Motion::Planned;
+        // The first change is on cycle 0: it is the first step's jerk.
+        let first = self.schedule.change(0);
+        self.jerk = first.amount;
+        self.countdown = first.cycle;
+        self.next_change = 1;
+        self.replay_end = self.schedule.changes().len();
+        // Right after an abrupt stop the last acceleration is the drop: the first step of the
+        // move starts from zero, so its jerk is corrected for that one cycle, and the slow path
+        // takes the correction back.
+        let acceleration = self.state.acceleration.to_bits();
+        if acceleration != 0 {
+            self.jerk -= acceleration;
+            self.offset = acceleration;
+            self.countdown = 1;
+            self.replay_end = 0;
+        }
+    }
+
+    /// Whether the planned move has replayed its end marker.
+    fn arrived(&self) -> bool {
+        self.motion == Motion::Planned && self.replay_end > 0 && self.next_change >= self.replay_end
+    }
+
+    /// The slow path of [`ProfileGenerator::step`]: the event that the countdown reached.
+    #[cold]
+    #[inline(never)]
+    fn event(&mut self) {
+        self.exempt = false;
+        let (acceleration, velocity) = (
+            self.state.acceleration.to_bits(),
+            self.state.velocity.to_bits(),
+        );
+        match self.motion {
+            Motion::Planned if self.offset != 0 => {
+                // Only after the first step of a move started right after an abrupt stop: the
+                // correction is taken back, and the replay goes on from the second cycle.
+                self.jerk += core::mem::take(&mut self.offset);
+                self.replay_end = self.schedule.changes().len();
+                let first = self.schedule.change(0);
+                if first.cycle > 1 {
+                    self.countdown = first.cycle - 1;
+                } else {
+                    let second = self.schedule.change(1);
+                    self.jerk += second.amount;
+                    self.countdown = second.cycle;
+                    self.next_change = 2;
+                }
+            }
+            // Arrived: the end marker's hold ran out (after 2^64 steps), or nothing to follow.
+            Motion::Planned => self.rest(),
+            Motion::Stopping => {
+                if velocity == 0 && acceleration == 0 {
+                    self.rest();
+                } else {
+                    let next = stop::stopping_acceleration(
+                        self.direction * acceleration,
+                        self.direction * velocity,
+                        self.limits,
+                    );
+                    self.jerk = self.direction * next - acceleration;
+                    self.countdown = 1;
+                }
+            }
+            Motion::AbruptPending => {
+                self.exempt = true;
+                self.motion = Motion::Rest;
+                self.jerk = -acceleration;
+                self.countdown = 1;
+            }
+            Motion::Rest => self.rest(),
+        }
+    }
+
+    /// At rest: the next step levels the acceleration off if it is not zero yet.
+    fn rest(&mut self) {
+        self.motion = Motion::Rest;
+        self.replay_end = 0;
+        self.offset = 0;
+        self.jerk = -self.state.acceleration.to_bits();
+        self.countdown = if self.jerk == 0 { u64::MAX } else { 1 };
+    }
+}
+
+impl ProfileGenerator for SCurve {
+    #[inline]
+    fn step(&mut self) -> State {
+        // The identities of SPEC §5 by construction: the acceleration is the velocity change,
+        // the position advances by the new velocity (wrapping like the chip's register). The
+        // values stay within the limits, so the additions cannot overflow.
+        let acceleration = self.state.acceleration.to_bits() + self.jerk;
+        let velocity = self.state.velocity.to_bits() + acceleration;
+        let state = State {
+            position: I32F32::from_bits(self.state.position.to_bits().wrapping_add(velocity)),
+            velocity: I32F32::from_bits(velocity),
+            acceleration: I32F32::from_bits(acceleration),
+        };
+        self.state = state;
+        self.countdown -= 1;
+        if self.countdown == 0 {
+            // The next jerk change of the plan, replayed: its amount and the cycles it holds.
+            // The end marker, the last, brings the jerk to zero and holds for ever.
+            let next = self.next_change;
+            if next < self.replay_end {
+                let change = self.schedule.change(next);
+                self.jerk += change.amount;
+                self.countdown = change.cycle;
+                self.next_change = next + 1;
+            } else {
+                self.event();
+            }
+        }
+        state
+    }
+
+    fn state(&self) -> State {
+        self.state
+    }
+
+    fn is_complete(&self) -> bool {
+        self.motion == Motion::Rest || self.arrived()
+    }
+
+    fn stop(&mut self, kind: StopKind) {
+        // Either stop clears the velocity register, moving or not (SPEC §9).
+        self.velocity_cleared = true;
+        self.offset = 0;
+        let (acceleration, velocity) = (
+            self.state.acceleration.to_bits(),
+            self.state.velocity.to_bits(),
+        );
+        if self.arrived() {
+            self.motion = Motion::Rest;
+        }
+        self.replay_end = 0;
+        match (kind, self.motion) {
+            (_, Motion::Rest) | (StopKind::Smooth, Motion::Stopping | Motion::AbruptPending) => {}
+            (StopKind::Smooth, Motion::Planned) => {
+                self.motion = Motion::Stopping;
+                let next = stop::stopping_acceleration(
+                    self.direction * acceleration,
+                    self.direction * velocity,
+                    self.limits,
+                );
+                self.jerk = self.direction * next - acceleration;
+                self.countdown = 1;
+            }
+            (StopKind::Abrupt, _) => {
+                self.motion = Motion::AbruptPending;
+                // The next step's acceleration is the whole drop to zero velocity.
+                self.jerk = -velocity - acceleration;
+                self.countdown = 1;
+            }
+        }
+    }
+
+    fn limits(&self) -> Limits {
+        let acceleration = Some(I32F32::from_bits(self.limits.acceleration as i64));
+        Limits {
+            max_velocity: Some(I32F32::from_bits(self.limits.velocity as i64)),
+            max_speed_up: acceleration,
+            max_slow_down: acceleration,
+            max_acceleration: acceleration,
+            max_jerk: Some(I32F32::from_bits(self.limits.jerk as i64)),
+            exempt: self.exempt,
+        }
+    }
+}

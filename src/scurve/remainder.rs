@@ -1,0 +1,394 @@
+//! The remainder: what whole cycles of cruise and whole units cannot take off the distance, taken
+//! off exactly by *notch pairs* placed where the main move has room for them.
+//!
+//! A notch pair of width `w` and span `k` from cycle `s` lowers the acceleration by one raw unit
+//! for `w` cycles from `s` and raises it by one unit for `w` cycles from `s + k`. Its jerk is −1
+//! on cycle `s`, +1 on `s + w` and `s + k`, −1 on `s + k + w`; its velocity is
+//! `−(box(w) ∗ box(k))`, a dip at most `min(w, k)` deep that ends on cycle `s + k + w − 2`; it
+//! covers exactly `w·k` less and leaves the end of the move unchanged.
+//!
+//! Where a pair fits is decided by O(1) inequalities on the main move's [`Bounds`] (the lowered
+//! window where the acceleration is ≥ 0, the raised one where it is ≤ 0, the velocity at the two
+//! ends of the dips, which the main move's single peak makes enough) and by the exact jerk on the
+//! four cycles of each pair ([`Placement::fits`]). Two pairs of widths `w` and `w + 1` take any
+//! remainder `E` in their range: `w·k₁ + (w + 1)·k₂ = E` is solved by
+//! `k₁ ≡ −E (mod w + 1)` ([`two_pairs`]), because `w ≡ −1` is its own inverse modulo `w + 1`.
+
+use super::shape::{Bounds, MainMove};
+
+/// One notch pair: see the module docs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(super) struct Notch {
+    /// The cycle of its first jerk change (−1).
+    pub start: u64,
+    /// Cycles the acceleration is one unit lower, and later one unit higher.
+    pub width: u64,
+    /// Cycles from the first lowered cycle to the first raised one.
+    pub span: u64,
+}
+
+impl Notch {
+    /// Its jerk impulses `(cycle, ±1)`.
+    pub fn impulses(&self) -> [(u64, i64); 4] {
+        let (s, w, k) = (self.start, self.width, self.span);
+        [(s, -1), (s + w, 1), (s + k, 1), (s + k + w, -1)]
+    }
+
+    /// The last cycle on which it lowers the velocity.
+    fn last_dip(&self) -> u64 {
+        self.start + self.span + self.width - 2
+    }
+
+    /// How much it lowers the velocity on cycle `n`: `(box(w) ∗ box(k))(n − s)`.
+    fn depth_at(&self, n: u64) -> u64 {
+        let Some(m) = n.checked_sub(self.start) else {
+            return 0;
+        };
+        let (w, k) = (self.width, self.span);
+        let after = (w + k).saturating_sub(1 + m);
+        (m + 1).min(w).min(k).min(after)
+    }
+}
+
+/// At most this many notch pairs: the velocity notch and two for the remainder.
+pub(super) const MAX_NOTCHES: usize = 3;
+
+/// The notch pairs of a plan.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(super) struct Placement {
+    notches: [Notch; MAX_NOTCHES],
+    len: usize,
+}
+
+impl Placement {
+    /// The pairs placed.
+    pub fn notches(&self) -> &[Notch] {
+        &self.notches[..self.len]
+    }
+
+    /// With one more pair.
+    pub fn with(mut self, notch: Notch) -> Self {
+        if self.len < MAX_NOTCHES {
+            self.notches[self.len] = notch;
+            self.len += 1;
+        }
+        self
+    }
+
+    /// Whether every pair fits the main move within `jerk_limit` (raw units), by O(1)
+    /// inequalities per pair:
+    ///
+    /// - each lowered window `[s, s + w)` ends by `first_deceleration` (the acceleration is ≥ 0
+    ///   there, so at most three units lower is far within the limit, which is ≥ 2^16), each
+    ///   raised window starts from `rise_end − 1` on (the acceleration is ≤ 0 there);
+    /// - on each cycle where a pair changes the jerk, the main move's jerk plus every pair's
+    ///   change on that cycle is within the limit;
+    /// - every dip ends by the move's third-last cycle, and the main move's velocity at the first
+    ///   and at the last cycle of each dip is at least the dips' combined depth there.
+    pub fn fits(&self, main: &MainMove, bounds: &Bounds, jerk_limit: u64) -> bool {
+        let notches = self.notches();
+        if notches.is_empty() {
+            return true;
+        }
+        let windows = notches.iter().all(|n| {
+            n.width > 0
+                && n.span > n.width
+                && n.start + n.width <= bounds.first_deceleration
+                && n.start + n.span + 1 >= bounds.rise_end
+                && n.start + n.span + n.width < bounds.total
+        });
+        if !windows {
+            return false;
+        }
+        let limit = jerk_limit as i64;
+        let jerk_fits = notches.iter().all(|notch| {
+            notch.impulses().iter().all(|&(cycle, _)| {
+                let added: i64 = notches
+                    .iter()
+                    .flat_map(|other| other.impulses())
+                    .filter(|&(at, _)| at == cycle)
+                    .map(|(_, amount)| amount)
+                    .sum();
+                (main.jerk_at(cycle) + added).abs() <= limit
+            })
+        });
+        // The dips: at the first and last cycle of each, the main move's velocity covers them
+        // all. Inside, the main move's velocity rises (falls) faster than the dips deepen, on
+        // every cycle where the acceleration is at least their number; the schedule's one pass
+        // ([`super::schedule::Schedule::with_peaks`]) has the last word.
+        let covered = |n: u64| {
+            let depth: u64 = notches.iter().map(|notch| notch.depth_at(n)).sum();
+            main.velocity_at(n) >= depth
+        };
+        jerk_fits
+            && notches
+                .iter()
+                .all(|notch| covered(notch.start) && covered(notch.last_dip()))
+    }
+}
+
+/// The velocity notch of width `width`: lowered from the end of phase II on, raised to the start
+/// of phase VII, so the whole cruise is `width` lower; it takes `width · (c − 1)` off, where the
+/// earliest start of phase V is `c − 1` or `c`.
+pub(super) fn velocity_notch(width: u64, bounds: &Bounds, c: u64) -> Option<Notch> {
+    let start = bounds.first_fall_end.checked_sub(width)?;
+    Some(Notch {
+        start,
+        width,
+        span: c.checked_sub(1)?,
+    })
+}
+
+/// Cycles `[low, high]` (empty when `low > high`).
+type Interval = (u64, u64);
+
+/// Where a pair of width `w` can start (its first notch: −1 where the jerk is ≥ 0, +1 `w` later
+/// where it is ≤ 0, the window before phase V): in phases I–II, or in the cruise.
+fn firsts(bounds: &Bounds, w: u64) -> [Interval; 2] {
+    let last = bounds.first_deceleration.saturating_sub(w);
+    [
+        (
+            bounds.last_rise_start.saturating_sub(w),
+            bounds.first_fall_end.saturating_sub(1).min(last),
+        ),
+        (bounds.rise_end, last),
+    ]
+}
+
+/// Where its second notch can start (+1 where the jerk is ≤ 0, from the end of phase III on;
+/// −1 `w` later where the jerk is ≥ 0, before the last cycle): ending in the cruise, or after
+/// phase V.
+fn seconds(bounds: &Bounds, w: u64) -> [Interval; 2] {
+    let from = bounds.rise_end.saturating_sub(1);
+    [
+        (
+            from.max(bounds.rise_end.saturating_sub(w)),
+            bounds.first_deceleration.saturating_sub(w + 1),
+        ),
+        (
+            from.max(bounds.deceleration_jerked.saturating_sub(w)),
+            bounds
+                .first_landing
+                .saturating_sub(1)
+                .min(bounds.total.saturating_sub(w + 1)),
+        ),
+    ]
+}
+
+/// The spans a pair of width `w` can have with its first notch in `first` and its second in
+/// `second`: the differences of the two intervals.
+fn spans(first: Interval, second: Interval) -> Interval {
+    if first.0 > first.1 || second.0 > second.1 {
+        return (1, 0);
+    }
+    (
+        second.0.saturating_sub(first.1),
+        second.1.saturating_sub(first.0),
+    )
+}
+
+/// The pair of width `w` and span `k` with its notches in `first` and `second`: the start in
+/// the middle of where both fit (`None` if `k` is out of reach).
+fn place(first: Interval, second: Interval, width: u64, span: u64) -> Option<Notch> {
+    let low = first.0.max(second.0.saturating_sub(span));
+    let high = first.1.min(second.1.checked_sub(span)?);
+    (low <= high).then(|| Notch {
+        start: low + (high - low) / 2,
+        width,
+        span,
+    })
+}
+
+/// `⌈n / d⌉` for signed `n`, `d > 0`.
+fn div_ceil(n: i64, d: i64) -> i64 {
+    -((-n).div_euclid(d))
+}
+
+/// Two notch pairs, of widths `w` and `w + 1`, with spans in `range`, taking exactly `left`:
+/// `w·k₁ + (w + 1)·k₂ = left`. `w ≡ −1 (mod w + 1)`, so `k₁ ≡ −left (mod w + 1)`; the solutions
+/// are `k₁ = r + (w + 1)·t`, `k₂ = q − w·t`, and the inequalities of `range` bound `t`.
+fn solve_spans(left: u64, width: u64, range: (u64, u64)) -> Option<(u64, u64)> {
+    // No span is longer than left / w, so clamping the range there keeps every value below
+    // `left` (a few areas, < 2^50): 64-bit arithmetic, no 128-bit division on a 32-bit target.
+    let high = range.1.min(left / width);
+    let (w, left, low, high) = (
+        i64::try_from(width).ok()?,
+        i64::try_from(left).ok()?,
+        i64::try_from(range.0).ok()?,
+        i64::try_from(high).ok()?,
+    );
+    let r = (-left).rem_euclid(w + 1);
+    let q = (left - w * r) / (w + 1);
+    let t_low = div_ceil(low - r, w + 1).max(div_ceil(q - high, w));
+    let t_high = (high - r).div_euclid(w + 1).min((q - low).div_euclid(w));
+    if t_low > t_high {
+        return None;
+    }
+    // The middle solution: spans near each other, away from the ends of the range.
+    let t = t_low + (t_high - t_low) / 2;
+    Some((
+        u64::try_from(r + (w + 1) * t).ok()?,
+        u64::try_from(q - w * t).ok()?,
+    ))
+}
+
+/// One pair of width `width` ∈ {1, 2} taking exactly `left + q·area` with its span in `range`,
+/// for a small remainder: `(span, q)` with the least `q ≤ available`.
+fn one_pair(
+    left: u64,
+    width: u64,
+    range: Interval,
+    (area, available): (u64, u64),
+) -> Option<(u64, u64)> {
+    let w = width;
+    let least = range.0.max(width + 1).checked_mul(w)?.max(left);
+    let mut q = if area == 0 {
+        0
+    } else {
+        (least - left).div_ceil(area)
+    };
+    // An even width needs an even distance: one more unit of an odd area fixes the parity.
+    if left.checked_add(q.checked_mul(area)?)? % w != 0 {
+        q += 1;
+    }
+    let target = left.checked_add(q.checked_mul(area)?)?;
+    let span = target / w;
+    (target % w == 0 && q <= available && span <= range.1 && span > width).then_some((span, q))
+}
+
+/// How many widths around the estimate [`take`] tries.
+const WIDTH_TRIES: u64 = 3;
+
+/// Notch pairs that take exactly `left + q·area` off `main` together with the pairs already in
+/// `placed`, for the least `q ≤ available` that makes the remainder fit ([`Placement::fits`]):
+/// `q` units of that area then keep their whole cruise. A fixed, small number of candidates:
+/// for each of the four ways to place a pair (first notch in phases I–II or the cruise, second
+/// in the cruise or after phase V), one pair of width 1 or 2 for a small remainder, else two
+/// pairs of widths `w` and `w + 1` for a few `w`: around `left / (2·span + 1)`, and half and
+/// all of the first ramp (where short moves have room).
+pub(super) fn take(
+    left: u64,
+    main: &MainMove,
+    bounds: &Bounds,
+    placed: Placement,
+    jerk_limit: u64,
+    (area, available): (u64, u64),
+) -> Option<(Placement, u64)> {
+    if left == 0 {
+        return Some((placed, 0));
+    }
+    let try_fit = |pairs: &[Notch]| {
+        let placement = pairs.iter().fold(placed, |p, &n| p.with(n));
+        placement
+            .fits(main, bounds, jerk_limit)
+            .then_some(placement)
+    };
+    for which_first in 0..2 {
+        for which_second in 0..2 {
+            let region = |w: u64| {
+                let first = firsts(bounds, w)[which_first];
+                let second = seconds(bounds, w)[which_second];
+                (first, second, spans(first, second))
+            };
+            for width in 1..=2 {
+                let (first, second, range) = region(width);
+                let Some((span, q)) = one_pair(left, width, range, (area, available)) else {
+                    continue;
+                };
+                if let Some(found) = place(first, second, width, span).and_then(|n| try_fit(&[n])) {
+                    return Some((found, q));
+                }
+            }
+            // The widths whose spans land in the middle of the range.
+            let estimate = |range: Interval| {
+                let middle = (range.0 / 2 + range.1 / 2).max(1);
+                (left / middle.saturating_mul(2).saturating_add(1)).max(1)
+            };
+            let guess = estimate(region(estimate(region(1).2)).2);
+            let ramp = bounds.last_rise_start;
+            let widths =
+                (guess.saturating_sub(1).max(1)..guess + WIDTH_TRIES).chain([ramp / 2, ramp]);
+            for width in widths.filter(|&w| w > 0) {
+                let (first1, second1, narrow) = region(width);
+                let (first2, second2, wide) = region(width + 1);
+                let (low, high) = (narrow.0.max(wide.0), narrow.1.min(wide.1));
+                if low > high {
+                    continue;
+                }
+                // w·k₁ + (w + 1)·k₂ with k₁, k₂ in [low, high] has a solution for every value
+                // between these (k₁ moves in steps of w + 1, k₂ of w).
+                let (w, l, h) = (width, low, high);
+                let both_ends = w.saturating_mul(w + 1);
+                let least = (2 * w + 1).saturating_mul(l).saturating_add(both_ends);
+                let most = (2 * w + 1).saturating_mul(h).saturating_sub(both_ends);
+                let q = if left < least && area > 0 {
+                    (least - left).div_ceil(area)
+                } else {
+                    0
+                };
+                let Some(target) = q.checked_mul(area).and_then(|t| t.checked_add(left)) else {
+                    continue;
+                };
+                if q > available || target > most.max(left) {
+                    continue;
+                }
+                let Some((k1, k2)) = solve_spans(target, width, (low, high)) else {
+                    continue;
+                };
+                let (Some(one), Some(two)) = (
+                    place(first1, second1, width, k1),
+                    place(first2, second2, width + 1, k2),
+                ) else {
+                    continue;
+                };
+                // Their notches may meet where the jerk has no unit to spare: then move the
+                // wider pair by a cycle, within its room.
+                let moved = |by: i64| {
+                    let start = two.start.checked_add_signed(by)?;
+                    let fits_first = (first2.0..=first2.1).contains(&start);
+                    let fits_second = (second2.0..=second2.1).contains(&(start + k2));
+                    (fits_first && fits_second).then_some(Notch { start, ..two })
+                };
+                let found = [Some(two), moved(-1), moved(1)]
+                    .into_iter()
+                    .flatten()
+                    .find_map(|two| try_fit(&[one, two]));
+                if let Some(found) = found {
+                    return Some((found, q));
+                }
+            }
+        }
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(4_000))]
+
+        /// Any solution found solves the equation within the range; none found means none
+        /// exists (brute force over the range).
+        #[test]
+        fn solve_spans_solves(left in 1u64..200_000, width in 1u64..200, low in 1u64..2_000, extent in 0u64..2_000) {
+            let range = (low, low + extent);
+            match solve_spans(left, width, range) {
+                Some((k1, k2)) => {
+                    prop_assert_eq!(width * k1 + (width + 1) * k2, left);
+                    prop_assert!((low..=low + extent).contains(&k1) && (low..=low + extent).contains(&k2));
+                }
+                None => {
+                    for k1 in low..=low + extent {
+                        let Some(rest) = left.checked_sub(width * k1) else { break };
+                        let w2 = width + 1;
+                        let ok = rest % w2 == 0 && (low..=low + extent).contains(&(rest / w2));
+                        prop_assert!(!ok, "missed k1 = {}", k1);
+                    }
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,385 @@
+//! The search for a plan: the continuous-time optimum in integers, a small fixed set of integer
+//! shapes around it, and the first of them, fastest first, whose remainder fits.
+//!
+//! Its cost does not depend on the move: integer square and cube roots (bitwise, a fixed number
+//! of steps), at most [`MAX_CANDIDATES`] shapes each solved in closed form, and for each one
+//! tried a fixed number of notch-pair placements ([`super::remainder::take`]); the schedule is
+//! built once, for the plan that wins.
+
+use super::remainder::{self, velocity_notch, Placement};
+use super::schedule::{Limits64, Schedule};
+use super::shape::{MainMove, Mix};
+use super::ScurvePlan;
+
+/// `⌊∛n⌋`, bitwise (22 steps; no floating point, so every target computes the same plan).
+pub(super) fn cube_root(mut n: u64) -> u64 {
+    let mut root = 0u64;
+    // From the highest digit (base 8) that is not zero.
+    let mut shift = (63 - n.leading_zeros() as i32) / 3 * 3;
+    while shift >= 0 {
+        root *= 2;
+        // (2r + 1)³ − (2r)³ = 3·2r·(2r + 1) + 1, compared at this digit.
+        let next = 3 * root * (root + 1) + 1;
+        if (n >> shift) >= next {
+            n -= next << shift;
+            root += 1;
+        }
+        shift -= 3;
+    }
+    root
+}
+
+/// One shape: ramps `(a, b)`, a unit mix, a velocity notch of `notch` units, phase V from cycle
+/// `c`; `total = a + b + c` cycles.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Candidate {
+    mix: Mix,
+    notch: u64,
+    c: u64,
+    total: u64,
+}
+
+/// At most this many shapes: two first ramps × three second ramps × two mixes.
+const MAX_CANDIDATES: usize = 12;
+
+/// The shapes worth trying for a move of `distance` (2^-32 counts) within `limits`, each with
+/// the shortest cruise that covers the distance, fastest first.
+///
+/// The continuous optimum has jerk phases of `a* = min(A/J, √(V/J), ∛(D/2J))` cycles; the first
+/// ramp is its floor or ceiling. For each, the second ramp is the one that reaches the maximum
+/// velocity (`⌈V/peak⌉`) or the ones the distance allows with no cruise (the floor and ceiling
+/// of the root of `peak·b·(a + b) = D`), whichever is shorter; each with the mix that meets the
+/// velocity exactly or from below, and the one from above with a velocity notch.
+fn candidates(distance: u64, limits: Limits64) -> Candidates {
+    let (jerk, acceleration, velocity) = (limits.jerk, limits.acceleration, limits.velocity);
+    let by_acceleration = acceleration / jerk;
+    let by_velocity = (velocity / jerk).isqrt();
+    let by_distance = cube_root(distance / (2 * jerk));
+    let a0 = by_acceleration.min(by_velocity).min(by_distance);
+    let mut found = [None; MAX_CANDIDATES];
+    let mut len = 0;
+    // The floor and the ceiling of a* (both 1 when a* < 1).
+    let firsts = if a0 == 0 { 1..=1 } else { a0..=a0 + 1 };
+    for a in firsts {
+        // a ≤ √(2^46) + 1, so jerk·a < 2^55.
+        let peak = (jerk * a).min(acceleration);
+        let to_velocity = velocity.div_ceil(peak).max(a);
+        // peak·b·(a + b) ≤ D ⇔ b ≤ (√(a² + 4D/peak) − a)/2; D/peak < 2^63, a² < 2^47.
+        let quotient = distance / peak;
+        let root = if quotient < 1 << 60 {
+            (a * a + 4 * quotient).isqrt()
+        } else {
+            // Only with a peak below 8 raw units: rare enough for the 128-bit root.
+            let square = u128::from(a * a) + 4 * u128::from(quotient);
+            u64::try_from(square.isqrt()).unwrap_or(u64::MAX)
+        };
+        let no_cruise = (root - a) / 2;
+        let mut tried = [0u64; 3];
+        for (i, b) in [no_cruise, no_cruise + 1, to_velocity]
+            .into_iter()
+            .enumerate()
+        {
+            let b = b.clamp(a, to_velocity);
+            if tried[..i].contains(&b) {
+                continue;
+            }
+            tried[i] = b;
+            // Past the distance's own peak, a faster cruise cannot shorten the move.
+            let cap = distance / (a + b);
+            let target = if b >= to_velocity {
+                velocity
+            } else {
+                peak.saturating_mul(b)
+            }
+            .min(cap);
+            if target == 0 {
+                continue;
+            }
+            for under in [true, false] {
+                let Some(mix) = Mix::solve(a, b, jerk, acceleration, target, under) else {
+                    continue;
+                };
+                let notch = mix.velocity.saturating_sub(target);
+                if (!under && notch == 0) || notch > b {
+                    continue; // the same as the first, or a notch too wide to fit
+                }
+                let cruise = mix.velocity - notch;
+                // c·velocity − notch·(c − 1) ≥ distance.
+                let c = distance.saturating_sub(notch).div_ceil(cruise).max(a + b);
+                if len < MAX_CANDIDATES {
+                    found[len] = Some(Candidate {
+                        mix,
+                        notch,
+                        c,
+                        total: a + b + c,
+                    });
+                    len += 1;
+                }
+            }
+        }
+    }
+    // Fastest first (an insertion sort of at most a dozen indices).
+    let mut order = [0u8; MAX_CANDIDATES];
+    for i in 0..len {
+        let total = |k: u8| found[usize::from(k)].map_or(u64::MAX, |c| c.total);
+        let mut k = i;
+        while k > 0 && total(order[k - 1]) > found[i].map_or(u64::MAX, |c| c.total) {
+            order[k] = order[k - 1];
+            k -= 1;
+        }
+        order[k] = i as u8;
+    }
+    Candidates { found, order, len }
+}
+
+/// The candidate shapes and the order to try them in.
+struct Candidates {
+    found: [Option<Candidate>; MAX_CANDIDATES],
+    order: [u8; MAX_CANDIDATES],
+    len: usize,
+}
+
+impl Candidates {
+    /// Fastest first.
+    fn iter(&self) -> impl Iterator<Item = &Candidate> {
+        self.order[..self.len]
+            .iter()
+            .filter_map(|&k| self.found[usize::from(k)].as_ref())
+    }
+}
+
+/// Plans a move of `distance` (> 1, 2^-32 counts) in `direction` (±1) within `limits` into
+/// `out`: the fastest candidate shape whose remainder fits, else the one-cycle ramps, which
+/// always do. `false` (and `out` unusable) if nothing fits.
+pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut Schedule) -> bool {
+    let move_ = Move {
+        distance,
+        direction,
+        limits,
+    };
+    for candidate in candidates(distance, limits).iter() {
+        for extra in 0..2 {
+            if complete(candidate, candidate.c + extra, &move_, out) {
+                return true;
+            }
+        }
+    }
+    // Moves of a few cycles with a large jerk can be too short for notch pairs: two units of
+    // the jerk kept aside take the rest as fine units.
+    if limits.jerk > 2 {
+        let spare = Limits64 {
+            jerk: limits.jerk - 2,
+            ..limits
+        };
+        for candidate in candidates(distance, spare).iter().filter(|c| c.notch == 0) {
+            for extra in 0..2 {
+                if complete_fine(candidate, candidate.c + extra, &move_, out) {
+                    return true;
+                }
+            }
+        }
+    }
+    one_cycle_ramps(&move_, out)
+}
+
+/// What is being planned: the distance (2^-32 counts), the direction (±1), the limits.
+#[derive(Debug, Clone, Copy)]
+struct Move {
+    distance: u64,
+    direction: i64,
+    limits: Limits64,
+}
+
+/// The early units of `mix` with phase V from cycle `c` that take the most of `over` (2^-32
+/// counts), largest area first, and what they leave.
+fn early_units(mix: &Mix, c: u64, mut over: u64) -> ([u64; 4], u64) {
+    let areas = mix.areas();
+    let kinds = mix.kinds();
+    let mut early = [0u64; 4];
+    for k in 0..4 {
+        // A unit can end its cruise early only if it still has a cruise (c − 1 ≥ aₖ + bₖ).
+        if areas[k] > 0 && c > kinds[k].0 + kinds[k].1 {
+            let units = (over / areas[k]).min(mix.counts[k]);
+            early[k] = units;
+            over -= units * areas[k];
+        }
+    }
+    (early, over)
+}
+
+/// The distance `mix` covers with phase V from cycle `c` and a velocity notch of `notch` units
+/// (which takes `notch·(c − 1)`): `c·velocity − notch·(c − 1)`, or `None` past 64 bits.
+fn covered(mix: &Mix, c: u64, notch: u64) -> Option<u64> {
+    c.checked_mul(mix.velocity)?
+        .checked_sub(notch.checked_mul(c - 1)?)
+}
+
+/// The plan of `candidate` with phase V from cycle `c`, into `out`, if its remainder fits.
+///
+/// **How a move lands exactly.** The main move with phase V from cycle `c` covers
+/// `c·velocity` (less the velocity notch's share), at least the distance: every unit of area
+/// `aₖ·bₖ` whose cruise ends one cycle early takes `aₖ·bₖ` off, so the early units, largest area
+/// first, take all but a rest smaller than the smallest area. Notch pairs take that rest exactly
+/// ([`remainder::take`]); if the rest is too small for them, some early units keep their cruise
+/// and the rest grows by their areas until the pairs fit. The plan is then the main move less
+/// the pairs: its distance is the distance, to the raw unit, by construction, and
+/// [`Schedule::with_peaks`] confirms it with the limits.
+fn complete(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule) -> bool {
+    let mix = &candidate.mix;
+    let notch = candidate.notch;
+    let Some(over) = covered(mix, c, notch).and_then(|d| d.checked_sub(move_.distance)) else {
+        return false;
+    };
+    let areas = mix.areas();
+    let (mut early, over) = early_units(mix, c, over);
+    // Units given back (cruise restored) when the rest is too small for notch pairs: of the
+    // smallest early kind.
+    let give_back = (0..4).rev().find(|&k| early[k] > 0);
+    let (area, available) = give_back.map_or((0, 0), |k| (areas[k], early[k]));
+    let main = mix.main_move(c, early);
+    let bounds = main.bounds();
+    let mut placement = Placement::default();
+    if notch > 0 {
+        let Some(velocity_notch) = velocity_notch(notch, &bounds, c) else {
+            return false;
+        };
+        placement = placement.with(velocity_notch);
+        if !placement.fits(&main, &bounds, move_.limits.jerk) {
+            return false;
+        }
+    }
+    let jerk = move_.limits.jerk;
+    let Some((placement, given)) =
+        remainder::take(over, &main, &bounds, placement, jerk, (area, available))
+    else {
+        return false;
+    };
+    let main = match give_back {
+        Some(k) if given > 0 => {
+            early[k] -= given;
+            let main = mix.main_move(c, early);
+            // Fewer early units can only move phase V later; the pairs must still fit.
+            if !placement.fits(&main, &main.bounds(), jerk) {
+                return false;
+            }
+            main
+        }
+        _ => main,
+    };
+    finish(&main, &placement, (mix.a, mix.b), move_, out)
+}
+
+/// As [`complete`], for a mix planned with two units of jerk to spare: one unit more than fits
+/// ends its cruise early, and one or two fine units `tb(1, 1, x)` (`x` raw units each,
+/// `2 ≤ x ≤ total − 2`) add back the difference.
+fn complete_fine(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule) -> bool {
+    let mix = &candidate.mix;
+    let Some(over) = covered(mix, c, 0).and_then(|d| d.checked_sub(move_.distance)) else {
+        return false;
+    };
+    let (mut early, over) = early_units(mix, c, over);
+    // Fine units add distance: one more early unit than fits (of the smallest kind that has
+    // one to spare), and the fine units make up the difference.
+    let mut left = 0;
+    if over > 0 {
+        let kinds = mix.kinds();
+        let Some(k) = (0..4).rev().find(|&k| {
+            early[k] < mix.counts[k] && c > kinds[k].0 + kinds[k].1 && mix.areas()[k] > 0
+        }) else {
+            return false;
+        };
+        early[k] += 1;
+        left = mix.areas()[k] - over;
+    }
+    let main = mix.main_move(c, early);
+    let longest = main.bounds().total.saturating_sub(2);
+    let main = match left {
+        0 => main,
+        // A fine unit of one cycle would jerk by 2.
+        1 => return false,
+        x if x <= longest => main.with_fine_unit(x),
+        x if x - longest >= 2 && x - longest <= longest => {
+            main.with_fine_unit(longest).with_fine_unit(x - longest)
+        }
+        _ => return false,
+    };
+    finish(&main, &Placement::default(), (mix.a, mix.b), move_, out)
+}
+
+/// Builds the schedule of `main` less `placement` into `out` and checks it
+/// ([`Schedule::with_peaks`]).
+fn finish(
+    main: &MainMove,
+    placement: &Placement,
+    (a, b): (u64, u64),
+    move_: &Move,
+    out: &mut Schedule,
+) -> bool {
+    let total = main.bounds().total;
+    let Some(cruise) = total.checked_sub(2 * (a + b)) else {
+        return false;
+    };
+    let plan = ScurvePlan {
+        phases: [a, b - a, a, cruise, a, b - a, a],
+        total,
+        peak_acceleration: 0,
+        peak_velocity: 0,
+    };
+    out.build(main, placement, move_.direction, plan);
+    let checked = out.find_peaks(move_.distance, move_.direction, move_.limits);
+    if checked {
+        out.seal();
+    }
+    checked
+}
+
+/// The plan with ramps of one cycle: `tb(1, 1, c)` units, as many as the jerk, the
+/// acceleration and the velocity allow, one early unit per raw unit of overshoot. It has no
+/// remainder (its units' area is 1), so it fits every distance of at least 2 raw units: the
+/// last resort.
+fn one_cycle_ramps(move_: &Move, out: &mut Schedule) -> bool {
+    let (distance, limits) = (move_.distance, move_.limits);
+    let most = limits.jerk.min(limits.acceleration).min(limits.velocity);
+    let mut c = distance.div_ceil(most).max(2);
+    if c == 2 && distance % 2 == 1 {
+        c = 3; // an early unit needs a cruise of its own (c − 1 ≥ 2)
+    }
+    for c in c..c + 2 {
+        let units = distance.div_ceil(c);
+        let over = units * c - distance;
+        if over > units || (over > 0 && c < 3) {
+            continue;
+        }
+        let mix = Mix {
+            a: 1,
+            b: 1,
+            counts: [units, 0, 0, 0],
+            acceleration: units,
+            velocity: units,
+        };
+        let main = mix.main_move(c, [over, 0, 0, 0]);
+        if finish(&main, &Placement::default(), (1, 1), move_, out) {
+            return true;
+        }
+    }
+    false
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cube_root_is_exact() {
+        for n in (0..5_000u64).chain([
+            u64::MAX,
+            u64::MAX - 1,
+            1 << 63,
+            (1 << 21) * (1 << 21) * (1 << 21) - 1,
+        ]) {
+            let r = cube_root(n);
+            assert!(u128::from(r).pow(3) <= u128::from(n), "{n}");
+            assert!(u128::from(r + 1).pow(3) > u128::from(n), "{n}");
+        }
+    }
+}

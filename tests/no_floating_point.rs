@@ -1,0 +1,70 @@
+//! SPEC §16: no `f32`/`f64` in planning or on the per-cycle path, so a plan computed on a host
+//! is the plan a microcontroller computes, bit for bit. Floats live at the edges only: the
+//! register conversions (`src/format/`) and the `reference` yardstick. This test reads the
+//! sources of every generator and fails on a floating-point type outside comments (a doc example
+//! may convert a result to `f64` for display: doc comments are comments).
+
+/// The generators' sources, by path.
+const SOURCES: &[(&str, &str)] = &[
+    ("src/scurve/mod.rs", include_str!("../src/scurve/mod.rs")),
+    (
+        "src/scurve/search.rs",
+        include_str!("../src/scurve/search.rs"),
+    ),
+    (
+        "src/scurve/shape.rs",
+        include_str!("../src/scurve/shape.rs"),
+    ),
+    (
+        "src/scurve/remainder.rs",
+        include_str!("../src/scurve/remainder.rs"),
+    ),
+    (
+        "src/scurve/schedule.rs",
+        include_str!("../src/scurve/schedule.rs"),
+    ),
+    ("src/scurve/stop.rs", include_str!("../src/scurve/stop.rs")),
+    ("src/trapezoidal.rs", include_str!("../src/trapezoidal.rs")),
+    ("src/velocity.rs", include_str!("../src/velocity.rs")),
+    ("src/state.rs", include_str!("../src/state.rs")),
+    ("src/waveform.rs", include_str!("../src/waveform.rs")),
+];
+
+/// Whether `code` names `word` as a whole token (not inside a longer identifier).
+fn names(code: &str, word: &str) -> bool {
+    let is_ident = |c: char| c.is_ascii_alphanumeric() || c == '_';
+    code.match_indices(word).any(|(at, _)| {
+        let before = code[..at].chars().next_back();
+        let after = code[at + word.len()..].chars().next();
+        !before.is_some_and(is_ident) && !after.is_some_and(is_ident)
+    })
+}
+
+#[test]
+fn no_floating_point_in_planning_or_stepping() {
+    let mut found = Vec::new();
+    for (path, source) in SOURCES {
+        for (number, line) in source.lines().enumerate() {
+            let code = line.split("//").next().unwrap_or("");
+            for word in ["f32", "f64", "Float"] {
+                if names(code, word) {
+                    found.push(format!("{path}:{}: {}", number + 1, line.trim()));
+                }
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "floating point in a generator:\n{}",
+        found.join("\n")
+    );
+}
+
+/// The check itself finds what it must (and not what it must not).
+#[test]
+fn the_check_finds_floats() {
+    assert!(names("let x: f64 = 1.0;", "f64"));
+    assert!(names("(x as f32)", "f32"));
+    assert!(!names("let f64_bits = 3;", "f64"));
+    assert!(!names("let my_f64 = 3;", "f64"));
+}

@@ -1,0 +1,592 @@
+#!/usr/bin/env python3
+"""Counts the Cortex-M4 instructions that S-curve planning and stepping execute (SPEC §16).
+
+Loads the probe image (probe/, `thumbv7em-none-eabihf`) into Unicorn as a Cortex-M4 and calls
+its exported functions one at a time, like a C caller would: arguments in r0-r3, sp at the top
+of RAM, lr a return address nothing else uses; the call ends when execution reaches that address.
+Every instruction executed from the function's first to its return is counted, callees included
+(soft-float `f64` routines, memcpy, ...).
+
+Counting: a block hook adds the instruction count of each translated block executed, decoded
+once per block with Capstone. `--verify` checks this against a hook on every instruction (exact,
+slow) on a sample of calls, and checks the probe's own move generator against this one's calls.
+
+Planning: moves 0 .. N-1 of benches/common/moves.rs (log-uniform over the whole register ranges),
+each `probe_plan_bits(destination, velocity, acceleration, jerk)`: registers from bits,
+`SCurve::new`, the generator kept. Stepping: `probe_step()` per cycle, one call per cycle, over
+whole moves: a fixed moderate move and the random moves short enough to step to the end; each
+cycle is classed ramp (phases I-III), cruise (IV), deceleration (V-VII) or rest (after the move).
+Per-step counts include the call itself (entry, loading the static generator, return).
+
+For the worst plan, the instructions are also attributed to the functions (symbols) they ran
+in: the planner's own functions, and the library routines it calls (f64 arithmetic, 64-bit
+division, memcpy).
+
+Exit status: 0 when within the budgets given (none given: report only), 1 when a budget is
+exceeded, 2 when the probe panicked, faulted or ran away, or on bad usage.
+"""
+
+from __future__ import annotations
+
+import argparse
+import bisect
+import os
+import statistics
+import struct
+import sys
+import time
+from dataclasses import dataclass, field
+
+from capstone import CS_ARCH_ARM, CS_MODE_MCLASS, CS_MODE_THUMB, Cs
+from elftools.elf.elffile import ELFFile
+from elftools.elf.sections import SymbolTableSection
+from unicorn import (
+    UC_ARCH_ARM,
+    UC_HOOK_BLOCK,
+    UC_HOOK_CODE,
+    UC_MODE_MCLASS,
+    UC_MODE_THUMB,
+    UC_PROT_ALL,
+    Uc,
+    UcError,
+)
+from unicorn import arm_const as arm
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DEFAULT_ELF = os.path.join(ROOT, "probe", "target", "thumbv7em-none-eabihf", "release", "probe")
+
+PAGE = 0x1000
+# The return address given to every call: a mapped page that no code of the probe lives in,
+# away from the 0xFxxxxxxx EXC_RETURN values a Cortex-M treats specially.
+RETURN_PAGE = 0x0400_0000
+# Words the harness passes out-pointers to (probe_move, probe_phases).
+SCRATCH_PAGE = 0x0500_0000
+STACK_PAINT = 0xA5
+
+# The fixed moderate move that is stepped: 1,000,000 counts at 100 counts/cycle, acceleration
+# 0.25 counts/cycle², jerk 0.01 counts/cycle³ (raw register bits).
+FIXED_STEP_MOVE = (1_000_000, 100 << 16, 16_384, 42_949_673)
+
+
+class ProbeFailure(Exception):
+    """The probe panicked, faulted or ran away."""
+
+
+def page_floor(address: int) -> int:
+    return address & ~(PAGE - 1)
+
+
+def page_ceil(address: int) -> int:
+    return (address + PAGE - 1) & ~(PAGE - 1)
+
+
+def describe_move(move: tuple[int, int, int, int]) -> str:
+    destination, velocity, acceleration, jerk = move
+    return (
+        f"destination {destination} counts, velocity {velocity} ({velocity / 2**16:.6g} counts/cycle), "
+        f"acceleration {acceleration} ({acceleration / 2**16:.6g} counts/cycle²), "
+        f"jerk {jerk} ({jerk / 2**32:.6g} counts/cycle³)"
+    )
+
+
+@dataclass
+class Call:
+    """One call's result: r0/r1 as returned, and the instructions it executed."""
+
+    r0: int
+    r1: int
+    instructions: int
+
+    @property
+    def u64(self) -> int:
+        return self.r0 | (self.r1 << 32)
+
+
+@dataclass
+class Probe:
+    path: str
+    max_instructions: int
+    symbols: dict[str, int] = field(default_factory=dict)
+    functions: list[tuple[int, int, str]] = field(default_factory=list)
+
+    def __post_init__(self) -> None:
+        with open(self.path, "rb") as f:
+            elf = ELFFile(f)
+            if elf["e_machine"] != "EM_ARM":
+                raise SystemExit(f"{self.path}: not an ARM image")
+            segments = [
+                (seg["p_paddr"], seg["p_vaddr"], seg.data(), seg["p_memsz"])
+                for seg in elf.iter_segments()
+                if seg["p_type"] == "PT_LOAD"
+            ]
+            for section in elf.iter_sections():
+                if isinstance(section, SymbolTableSection):
+                    for symbol in section.iter_symbols():
+                        if symbol.name and symbol["st_info"]["type"] in ("STT_FUNC", "STT_OBJECT", "STT_NOTYPE"):
+                            self.symbols[symbol.name] = symbol["st_value"]
+                        if symbol["st_info"]["type"] == "STT_FUNC" and symbol["st_size"]:
+                            start = symbol["st_value"] & ~1
+                            self.functions.append((start, start + symbol["st_size"], demangle(symbol.name)))
+        self.functions.sort()
+        for name in ("probe_plan_bits", "probe_plan", "probe_move", "probe_step_setup", "probe_phases",
+                     "probe_step", "probe_panicked", "_stack_top", "_stack_bottom"):
+            if name not in self.symbols:
+                raise SystemExit(f"{self.path}: no symbol {name} (is it the probe image?)")
+
+        self.uc = Uc(UC_ARCH_ARM, UC_MODE_THUMB | UC_MODE_MCLASS)
+        self.uc.ctl_set_cpu_model(arm.UC_CPU_ARM_CORTEX_M4)
+        # Map every page a segment touches (flash image at its load address, RAM at its run
+        # address), the RAM up to the stack top, the return page and the scratch page.
+        regions: list[tuple[int, int]] = []
+        for paddr, vaddr, _, memsz in segments:
+            for base in {paddr, vaddr}:
+                regions.append((page_floor(base), page_ceil(base + max(memsz, 1))))
+        ram_base = page_floor(self.symbols["_stack_bottom"])
+        self.stack_top = self.symbols["_stack_top"]
+        regions.append((ram_base, page_ceil(self.stack_top)))
+        regions += [(RETURN_PAGE, RETURN_PAGE + PAGE), (SCRATCH_PAGE, SCRATCH_PAGE + PAGE)]
+        for start, end in merge(regions):
+            self.uc.mem_map(start, end - start, UC_PROT_ALL)
+        # The return page holds `udf` only: nothing may execute there (emulation stops on arrival).
+        self.uc.mem_write(RETURN_PAGE, b"\x00\xde" * (PAGE // 2))
+        # Flash image (load addresses), then initialized data copied to its run address and .bss
+        # zeroed, as a reset handler would.
+        for paddr, vaddr, data, memsz in segments:
+            self.uc.mem_write(paddr, data)
+            if vaddr != paddr:
+                self.uc.mem_write(vaddr, data)
+            if memsz > len(data):
+                self.uc.mem_write(vaddr + len(data), bytes(memsz - len(data)))
+        self.stack_bottom = self.symbols["_stack_bottom"]
+        self.paint_stack()
+
+        self.disassembler = Cs(CS_ARCH_ARM, CS_MODE_THUMB | CS_MODE_MCLASS)
+        self.block_counts: dict[int, int] = {}
+        self.count = 0
+        self.exact = False
+        self.raw_count = 0
+        self.it_blocks: dict[int, tuple[int, int]] = {}
+        self.it_start = self.it_end = 0
+        self.failure: str | None = None
+        self.profile: dict[int, int] | None = None
+        self.uc.hook_add(UC_HOOK_BLOCK, self._on_block)
+        panicked = self.symbols["probe_panicked"] & ~1
+        self.uc.hook_add(UC_HOOK_CODE, self._on_panic, begin=panicked, end=panicked)
+
+    # Hooks -------------------------------------------------------------------------------------
+
+    def _on_block(self, uc: Uc, address: int, size: int, _data: object) -> None:
+        key = (address << 16) | size
+        n = self.block_counts.get(key)
+        if n is None:
+            n = self.block_counts[key] = self._decode(address, size)
+        if not self.exact:
+            self.count += n
+        if self.profile is not None:
+            self.profile[address] = self.profile.get(address, 0) + n
+        if self.count > self.max_instructions:
+            self.failure = f"ran away: more than {self.max_instructions} instructions"
+            uc.emu_stop()
+
+    def _on_instruction(self, uc: Uc, address: int, size: int, _data: object) -> None:
+        # Unicorn runs the hook of an instruction inside an IT block only when its condition
+        # passes, but the Cortex-M4 issues every instruction of the block (one that fails its
+        # condition executes as a NOP, in a cycle): so an IT counts itself and its whole block,
+        # and the hooks that fire inside the block are not counted again.
+        if self.it_start <= address < self.it_end:
+            self.raw_count += 1
+            return
+        it = self.it_blocks.get(address)
+        if it is None:
+            it = self.it_blocks[address] = self._it_block(address)
+        self.count += 1 + it[0]
+        self.raw_count += 1
+        if it[0]:
+            self.it_start, self.it_end = address + size, it[1]
+
+    def _it_block(self, address: int) -> tuple[int, int]:
+        """(the number of instructions in the IT block that the instruction at `address` starts,
+        the address after the block); (0, 0) when it is not an IT."""
+        code = bytes(self.uc.mem_read(address, 2 + 4 * 4))
+        instructions = list(self.disassembler.disasm_lite(code, address, 5))
+        mnemonic = instructions[0][2]
+        if not mnemonic.startswith("it"):
+            return (0, 0)
+        k = len(mnemonic) - 1
+        last = instructions[k]
+        return (k, last[0] + last[1])
+
+    def _on_panic(self, uc: Uc, address: int, size: int, _data: object) -> None:
+        line = self.read_u32(self.symbols["PROBE_PANIC_LINE"]) if "PROBE_PANIC_LINE" in self.symbols else 0
+        where = ""
+        if line:
+            file_at = self.read_u32(self.symbols["PROBE_PANIC_FILE"])
+            length = self.read_u32(self.symbols["PROBE_PANIC_FILE_LEN"])
+            name = bytes(uc.mem_read(file_at, min(length, 512))).decode("utf-8", "replace")
+            where = f" at {name}:{line}"
+        self.failure = f"panicked{where}"
+        uc.emu_stop()
+
+    def _decode(self, address: int, size: int) -> int:
+        code = bytes(self.uc.mem_read(address, size))
+        n = 0
+        end = address
+        for insn_address, insn_size, _, _ in self.disassembler.disasm_lite(code, address):
+            n += 1
+            end = insn_address + insn_size
+        if end != address + size:
+            raise ProbeFailure(f"cannot decode the block at {address:#x} (+{size}) past {end:#x}")
+        return n
+
+    # Calls -------------------------------------------------------------------------------------
+
+    def read_u32(self, address: int) -> int:
+        return struct.unpack("<I", self.uc.mem_read(address, 4))[0]
+
+    def read_words(self, address: int, n: int) -> list[int]:
+        return list(struct.unpack(f"<{n}I", self.uc.mem_read(address, 4 * n)))
+
+    def call(self, name: str, *args: int) -> Call:
+        if len(args) > 4:
+            raise ValueError("at most 4 register arguments")
+        uc = self.uc
+        for register, value in zip((arm.UC_ARM_REG_R0, arm.UC_ARM_REG_R1, arm.UC_ARM_REG_R2,
+                                    arm.UC_ARM_REG_R3), args):
+            uc.reg_write(register, value & 0xFFFF_FFFF)
+        uc.reg_write(arm.UC_ARM_REG_SP, self.stack_top)
+        uc.reg_write(arm.UC_ARM_REG_LR, RETURN_PAGE | 1)
+        self.count = 0
+        self.failure = None
+        try:
+            uc.emu_start(self.symbols[name] | 1, RETURN_PAGE)
+        except UcError as error:
+            pc = uc.reg_read(arm.UC_ARM_REG_PC)
+            raise ProbeFailure(f"{name}{args}: {error} at pc {pc:#x}") from None
+        if self.failure:
+            raise ProbeFailure(f"{name}{args}: {self.failure}")
+        pc = uc.reg_read(arm.UC_ARM_REG_PC)
+        if pc & ~1 != RETURN_PAGE:
+            raise ProbeFailure(f"{name}{args}: stopped at pc {pc:#x}, not at the return address")
+        return Call(uc.reg_read(arm.UC_ARM_REG_R0), uc.reg_read(arm.UC_ARM_REG_R1), self.count)
+
+    def call_exact(self, name: str, *args: int) -> Call:
+        """As `call`, counting with a hook on every instruction (slow; for --verify)."""
+        hook = self.uc.hook_add(UC_HOOK_CODE, self._on_instruction)
+        # Blocks translated before the hook was added would run without it.
+        self.uc.ctl_flush_tb()
+        self.exact = True
+        self.raw_count = 0
+        self.it_start = self.it_end = 0
+        try:
+            return self.call(name, *args)
+        finally:
+            self.exact = False
+            self.uc.hook_del(hook)
+            self.uc.ctl_flush_tb()
+
+    def call_profiled(self, name: str, *args: int) -> list[tuple[str, int]]:
+        """As `call`; returns the instructions executed in each function (symbol), most first."""
+        self.profile = {}
+        try:
+            self.call(name, *args)
+            by_function: dict[str, int] = {}
+            for address, n in self.profile.items():
+                function = self.function_at(address)
+                by_function[function] = by_function.get(function, 0) + n
+        finally:
+            self.profile = None
+        return sorted(by_function.items(), key=lambda item: -item[1])
+
+    def function_at(self, address: int) -> str:
+        i = bisect.bisect_right(self.functions, (address, 1 << 64, "")) - 1
+        if i >= 0 and self.functions[i][0] <= address < self.functions[i][1]:
+            return self.functions[i][2]
+        return f"{address:#x}"
+
+    # Stack -------------------------------------------------------------------------------------
+
+    def paint_stack(self) -> None:
+        self.uc.mem_write(self.stack_bottom, bytes([STACK_PAINT]) * (self.stack_top - self.stack_bottom))
+
+    def stack_used(self) -> int:
+        """Bytes of stack written since the last paint (the deepest any call went)."""
+        memory = bytes(self.uc.mem_read(self.stack_bottom, self.stack_top - self.stack_bottom))
+        untouched = len(memory) - len(memory.lstrip(bytes([STACK_PAINT])))
+        return len(memory) - untouched
+
+    # The probe's functions ---------------------------------------------------------------------
+
+    def move(self, index: int) -> tuple[int, int, int, int]:
+        self.call("probe_move", index, SCRATCH_PAGE)
+        destination, velocity, acceleration, jerk = self.read_words(SCRATCH_PAGE, 4)
+        return (destination - (1 << 32) if destination >= 1 << 31 else destination, velocity, acceleration, jerk)
+
+    def phases(self) -> list[int]:
+        self.call("probe_phases", SCRATCH_PAGE)
+        return self.read_words(SCRATCH_PAGE, 7)
+
+
+def demangle(name: str) -> str:
+    """A Rust legacy-mangled name (`_ZN4core3fmt5write17h0123456789abcdefE`) as a path without
+    its hash (`core::fmt::write`), a v0-mangled one roughly so; other names as they are."""
+    if name.startswith("_R"):
+        return demangle_v0(name)
+    if not (name.startswith("_ZN") and name.endswith("E")):
+        return name
+    parts, i, body = [], 3, name[:-1]
+    while i < len(body) and body[i].isdigit():
+        j = i
+        while body[j].isdigit():
+            j += 1
+        length = int(body[i:j])
+        parts.append(body[j:j + length])
+        i = j + length
+    if parts and len(parts[-1]) == 17 and parts[-1].startswith("h"):
+        parts.pop()
+    # A component that starts with an escape gets a leading underscore.
+    path = "::".join(part[1:] if part.startswith("_$") else part for part in parts)
+    for escape, char in (("$LT$", "<"), ("$GT$", ">"), ("$RF$", "&"), ("$u20$", " "), ("$C$", ","),
+                         ("$u7b$", "{"), ("$u7d$", "}"), ("..", "::")):
+        path = path.replace(escape, char)
+    return path
+
+
+def demangle_v0(name: str) -> str:
+    """The identifiers of a v0-mangled name joined by `::`, skipping crate disambiguators
+    (`_RNvNtCs1a2b_17compiler_builtins3mem7memmove` → `compiler_builtins::mem::memmove`): enough
+    to name a function, not a full demangler (generic arguments come out as more identifiers)."""
+    parts, i = [], 2
+    while i < len(name):
+        if name[i].isdigit():
+            j = i
+            while j < len(name) and name[j].isdigit():
+                j += 1
+            length = int(name[i:j])
+            if j < len(name) and name[j] == "_":  # separator before an identifier starting with _ or a digit
+                j += 1
+            parts.append(name[j:j + length])
+            i = j + length
+        elif name.startswith("Cs", i):
+            i = name.find("_", i) + 1 or len(name)
+        else:
+            i += 1
+    return "::".join(parts) or name
+
+
+def merge(regions: list[tuple[int, int]]) -> list[tuple[int, int]]:
+    merged: list[list[int]] = []
+    for start, end in sorted(regions):
+        if merged and start <= merged[-1][1]:
+            merged[-1][1] = max(merged[-1][1], end)
+        else:
+            merged.append([start, end])
+    return [(start, end) for start, end in merged]
+
+
+def percentile(sorted_values: list[int], p: float) -> int:
+    """Nearest-rank percentile."""
+    rank = max(1, -(-len(sorted_values) * p // 100))
+    return sorted_values[int(rank) - 1]
+
+
+REFUSED = (1 << 64) - 1
+
+
+# Planning ----------------------------------------------------------------------------------------
+
+
+def measure_planning(probe: Probe, first: int, n: int) -> list[tuple[int, int, tuple[int, int, int, int], int]]:
+    """(index, instructions, move, total cycles) for moves first .. first+n-1."""
+    results = []
+    for index in range(first, first + n):
+        move = probe.move(index)
+        call = probe.call("probe_plan_bits", *move)
+        if call.u64 == REFUSED:
+            raise ProbeFailure(f"move {index} was refused: {describe_move(move)}")
+        results.append((index, call.instructions, move, call.u64))
+    return results
+
+
+# Stepping ----------------------------------------------------------------------------------------
+
+PHASE_NAMES = ("ramp (I-III)", "cruise (IV)", "deceleration (V-VII)", "at rest (after the move)")
+
+
+def step_move(probe: Probe, move: tuple[int, int, int, int], rest_cycles: int,
+              per_phase: list[list[int]], worst: dict) -> int:
+    """Steps `move` to its end (and `rest_cycles` more); adds each cycle's count to its phase.
+    Returns the number of cycles stepped."""
+    setup = probe.call("probe_step_setup", *move)
+    total = setup.u64
+    if total == REFUSED:
+        raise ProbeFailure(f"step move refused: {describe_move(move)}")
+    phases = probe.phases()
+    probe.paint_stack()  # the steps' own stack, not the planning's
+    ramp_end = min(sum(phases[0:3]), total)
+    deceleration_start = max(total - sum(phases[4:7]), ramp_end)
+    for cycle in range(1, total + rest_cycles + 1):
+        n = probe.call("probe_step").instructions
+        phase = 0 if cycle <= ramp_end else 1 if cycle <= deceleration_start else 2 if cycle <= total else 3
+        per_phase[phase].append(n)
+        if n > worst["instructions"]:
+            worst.update(instructions=n, move=move, cycle=cycle, total=total, phase=PHASE_NAMES[phase])
+    worst["stack"] = max(worst.get("stack", 0), probe.stack_used())
+    return total + rest_cycles
+
+
+# Verification ------------------------------------------------------------------------------------
+
+
+def verify(probe: Probe, moves: int, steps: int) -> bool:
+    ok = True
+    for index in range(moves):
+        move = probe.move(index)
+        fast = probe.call("probe_plan_bits", *move)
+        exact = probe.call_exact("probe_plan_bits", *move)
+        on_target = probe.call("probe_plan", index)
+        same = fast.instructions == exact.instructions and fast.u64 == exact.u64
+        skipped = exact.instructions - probe.raw_count
+        print(f"  verify plan {index}: fast {fast.instructions} exact {exact.instructions} "
+              f"({probe.raw_count} hooked + {skipped} failing their IT condition) "
+              f"{'ok' if same else 'MISMATCH'}; total {fast.u64} cycles, probe_plan({index}) "
+              f"{'agrees' if on_target.u64 == fast.u64 else 'DISAGREES: ' + str(on_target.u64)}")
+        ok &= same and on_target.u64 == fast.u64
+    # The failures this harness must catch.
+    for name, expected in (("probe_selftest_panic", "panicked at src/main.rs"),
+                           ("probe_selftest_runaway", "ran away")):
+        cap, probe.max_instructions = probe.max_instructions, 100_000
+        try:
+            probe.call(name, 1)
+            caught = "returned"
+        except ProbeFailure as failure:
+            caught = str(failure)
+        finally:
+            probe.max_instructions = cap
+        good = expected in caught
+        print(f"  self-test {name}: {'caught' if good else 'NOT CAUGHT'} ({caught})")
+        ok &= good
+    # Stepping: the fixed move, counted both ways on alternate copies (same setup, same cycles).
+    fast_counts, exact_counts = [], []
+    for counts, call in ((fast_counts, probe.call), (exact_counts, probe.call_exact)):
+        total = probe.call("probe_step_setup", *FIXED_STEP_MOVE).u64
+        for _ in range(min(steps, total + 2)):
+            counts.append(call("probe_step").instructions)
+    same = fast_counts == exact_counts
+    print(f"  verify step: {len(fast_counts)} cycles of the fixed move, fast sum {sum(fast_counts)} "
+          f"exact sum {sum(exact_counts)}, every cycle {'equal' if same else 'NOT equal'}")
+    return ok and same
+
+
+# Main --------------------------------------------------------------------------------------------
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--elf", default=DEFAULT_ELF, help="the probe image (default: %(default)s)")
+    parser.add_argument("--moves", type=int, default=1000, help="random moves planned (default %(default)s)")
+    parser.add_argument("--first-move", type=int, default=0, help="index of the first move (default 0)")
+    parser.add_argument("--step-moves", type=int,
+                        help="of the planned moves, how many (from the first) are also stepped to the end "
+                             "when short enough (default: all)")
+    parser.add_argument("--step-max-cycles", type=int, default=3000,
+                        help="longest random move stepped, cycles (default %(default)s)")
+    parser.add_argument("--plan-budget", type=int, help="fail when any plan executes more instructions")
+    parser.add_argument("--step-budget", type=int, help="fail when any step executes more instructions")
+    parser.add_argument("--max-instructions", type=int, default=50_000_000,
+                        help="one call running longer than this is a runaway (default %(default)s)")
+    parser.add_argument("--verify", action="store_true",
+                        help="first check the block-based count against a per-instruction count")
+    parser.add_argument("--verify-moves", type=int, default=3, help="plans checked by --verify (default 3)")
+    parser.add_argument("--verify-steps", type=int, default=2000, help="steps checked by --verify (default 2000)")
+    parser.add_argument("--functions", type=int, default=8,
+                        help="functions listed for the worst plan (default %(default)s)")
+    parser.add_argument("--top", type=int, default=5, help="the most expensive plans listed (default 5)")
+    args = parser.parse_args()
+
+    if not os.path.exists(args.elf):
+        print(f"error: no probe image at {args.elf}: build it first "
+              "(cd probe && cargo build --release)", file=sys.stderr)
+        return 2
+    probe = Probe(args.elf, args.max_instructions)
+    started = time.monotonic()
+    try:
+        if args.verify:
+            print("== verification: block-hook count vs per-instruction count")
+            if not verify(probe, args.verify_moves, args.verify_steps):
+                print("error: the fast count does not match the exact count", file=sys.stderr)
+                return 2
+            probe.paint_stack()
+
+        planning_started = time.monotonic()
+        print(f"== planning: probe_plan_bits over moves {args.first_move} .. {args.first_move + args.moves - 1}")
+        results = measure_planning(probe, args.first_move, args.moves)
+        plan_stack = probe.stack_used()
+        counts = sorted(r[1] for r in results)
+        worst = max(results, key=lambda r: r[1])
+        print(f"  instructions: p50 {percentile(counts, 50)}, p99 {percentile(counts, 99)}, "
+              f"worst {counts[-1]}, mean {statistics.fmean(counts):.0f}, best {counts[0]}")
+        print(f"  worst: move {worst[0]}: {describe_move(worst[2])}; {worst[3]} cycles")
+        for index, n, move, total in sorted(results, key=lambda r: -r[1])[: args.top]:
+            print(f"    move {index}: {n} instructions; {describe_move(move)}; {total} cycles")
+        print(f"  stack: {plan_stack} bytes at most (one plan)")
+        profile = probe.call_profiled("probe_plan_bits", *worst[2])
+        print(f"  where the worst plan's {worst[1]} instructions run (function, instructions, share):")
+        for function, n in profile[: args.functions]:
+            print(f"    {n:10} {100 * n / worst[1]:5.1f}%  {function}")
+
+        print(f"  ({time.monotonic() - planning_started:.1f} s)")
+        print("== stepping: probe_step, one call per cycle")
+        stepping_started = time.monotonic()
+        per_phase: list[list[int]] = [[], [], [], []]
+        worst_step = {"instructions": -1}
+        stepped_moves = 1
+        cycles = step_move(probe, FIXED_STEP_MOVE, 10, per_phase, worst_step)
+        step_moves = len(results) if args.step_moves is None else args.step_moves
+        for index, _, move, total in results[:step_moves]:
+            if total <= args.step_max_cycles:
+                cycles += step_move(probe, move, 2, per_phase, worst_step)
+                stepped_moves += 1
+        print(f"  {stepped_moves} moves, {cycles} cycles: the fixed move ({describe_move(FIXED_STEP_MOVE)}) "
+              f"and the random moves of at most {args.step_max_cycles} cycles among the first {step_moves}")
+        all_steps = [n for phase in per_phase for n in phase]
+        for name, phase in zip(PHASE_NAMES, per_phase):
+            if phase:
+                print(f"  {name:26} max {max(phase):4}, mean {statistics.fmean(phase):6.1f} instructions "
+                      f"({len(phase)} cycles)")
+        moving = [n for phase in per_phase[:3] for n in phase]
+        print(f"  {'in motion (I-VII)':26} max {max(moving):4}, mean {statistics.fmean(moving):6.1f} instructions "
+              f"({len(moving)} cycles)")
+        print(f"  {'every cycle':26} max {max(all_steps):4}, mean {statistics.fmean(all_steps):6.1f} instructions "
+              f"({len(all_steps)} cycles)")
+        print(f"  worst: cycle {worst_step['cycle']} of {worst_step['total']} ({worst_step['phase']}) of "
+              f"{describe_move(worst_step['move'])}")
+        print(f"  stack: {worst_step['stack']} bytes at most (one step)")
+        print(f"  ({time.monotonic() - stepping_started:.1f} s)")
+    except ProbeFailure as failure:
+        print(f"error: the probe failed: {failure}", file=sys.stderr)
+        return 2
+    print(f"== {time.monotonic() - started:.1f} s in all")
+
+    status = 0
+    if args.plan_budget is not None:
+        if counts[-1] > args.plan_budget:
+            over = sum(1 for n in counts if n > args.plan_budget)
+            print(f"FAIL: planning executes up to {counts[-1]} instructions (move {worst[0]}), over the budget "
+                  f"of {args.plan_budget} (SPEC §16) in {over} of {len(counts)} moves", file=sys.stderr)
+            status = 1
+        else:
+            print(f"ok: planning within {args.plan_budget} instructions (worst {counts[-1]})")
+    if args.step_budget is not None:
+        if max(all_steps) > args.step_budget:
+            over = sum(1 for n in all_steps if n > args.step_budget)
+            print(f"FAIL: one step executes up to {max(all_steps)} instructions, over the budget of "
+                  f"{args.step_budget} (SPEC §16) on {over} of {len(all_steps)} cycles", file=sys.stderr)
+            status = 1
+        else:
+            print(f"ok: one step within {args.step_budget} instructions (worst {max(all_steps)})")
+    return status
+
+
+if __name__ == "__main__":
+    sys.exit(main())
