@@ -38,7 +38,7 @@ use fixed::types::I32F32;
 use crate::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
 use crate::state::{Limits, ProfileGenerator, State, StopKind};
 use crate::Error;
-use schedule::{Limits64, Schedule};
+use schedule::{Limits64, Schedule, SENTINEL};
 
 /// The parameters of an S-curve move, in MC1451A register formats.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -110,12 +110,10 @@ pub struct SCurve {
     jerk: i64,
     /// Steps until the next event: a jerk change, the end of the move, a stop's next cycle.
     countdown: u64,
-    /// Index of the next jerk change in the schedule.
+    /// Index of the next jerk change in the schedule, replayed on the fast path of
+    /// [`ProfileGenerator::step`]; off the plan (stops, rest) the schedule's sentinel, which sends
+    /// every event to the slow path. The move is complete once its end marker is replayed.
     next_change: usize,
-    /// While the plan is followed, one past the index of the schedule's end marker: changes
-    /// before it are replayed on the fast path of [`ProfileGenerator::step`]; 0 otherwise
-    /// (every event takes the slow path). The move is complete once the marker is replayed.
-    replay_end: usize,
     /// A correction to the jerk that the next event takes back (a move started right after an
     /// abrupt stop starts from that cycle's acceleration).
     offset: i64,
@@ -221,8 +219,7 @@ impl SCurve {
             state: State::at_rest(position),
             jerk: 0,
             countdown: u64::MAX,
-            next_change: 0,
-            replay_end: 0,
+            next_change: SENTINEL,
             offset: 0,
             motion: Motion::Rest,
             direction: 1,
@@ -384,7 +381,6 @@ impl SCurve {
         self.jerk = first.amount;
         self.countdown = first.cycle;
         self.next_change = 1;
-        self.replay_end = self.schedule.changes().len();
         // Right after an abrupt stop the last acceleration is the drop: the first step of the
         // move starts from zero, so its jerk is corrected for that one cycle, and the slow path
         // takes the correction back.
@@ -393,13 +389,13 @@ impl SCurve {
             self.jerk -= acceleration;
             self.offset = acceleration;
             self.countdown = 1;
-            self.replay_end = 0;
+            self.next_change = SENTINEL;
         }
     }
 
     /// Whether the planned move has replayed its end marker.
     fn arrived(&self) -> bool {
-        self.motion == Motion::Planned && self.replay_end > 0 && self.next_change >= self.replay_end
+        self.motion == Motion::Planned && self.next_change == self.schedule.changes().len()
     }
 
     /// The slow path of [`ProfileGenerator::step`]: the event that the countdown reached.
@@ -415,14 +411,15 @@ impl SCurve {
             Motion::Planned if self.offset != 0 => {
                 // Only after the first step of a move started right after an abrupt stop: the
                 // correction is taken back, and the replay goes on from the second cycle.
-                self.jerk += core::mem::take(&mut self.offset);
-                self.replay_end = self.schedule.changes().len();
+                self.offset = 0;
                 let first = self.schedule.change(0);
+                self.jerk = first.amount;
                 if first.cycle > 1 {
                     self.countdown = first.cycle - 1;
+                    self.next_change = 1;
                 } else {
                     let second = self.schedule.change(1);
-                    self.jerk += second.amount;
+                    self.jerk = second.amount;
                     self.countdown = second.cycle;
                     self.next_change = 2;
                 }
@@ -455,7 +452,7 @@ impl SCurve {
     /// At rest: the next step levels the acceleration off if it is not zero yet.
     fn rest(&mut self) {
         self.motion = Motion::Rest;
-        self.replay_end = 0;
+        self.next_change = SENTINEL;
         self.offset = 0;
         self.jerk = -self.state.acceleration.to_bits();
         self.countdown = if self.jerk == 0 { u64::MAX } else { 1 };
@@ -478,12 +475,13 @@ impl ProfileGenerator for SCurve {
         self.state = state;
         self.countdown -= 1;
         if self.countdown == 0 {
-            // The next jerk change of the plan, replayed: its amount and the cycles it holds.
-            // The end marker, the last, brings the jerk to zero and holds for ever.
+            // The next jerk change of the plan, replayed: the jerk it sets and the cycles it
+            // holds. The end marker, the last, sets the jerk to zero and holds for ever; the
+            // sentinel, which holds no cycle, sends the event to the slow path.
             let next = self.next_change;
-            if next < self.replay_end {
-                let change = self.schedule.change(next);
-                self.jerk += change.amount;
+            let change = self.schedule.change(next);
+            if change.cycle != 0 {
+                self.jerk = change.amount;
                 self.countdown = change.cycle;
                 self.next_change = next + 1;
             } else {
@@ -512,7 +510,7 @@ impl ProfileGenerator for SCurve {
         if self.arrived() {
             self.motion = Motion::Rest;
         }
-        self.replay_end = 0;
+        self.next_change = SENTINEL;
         match (kind, self.motion) {
             (_, Motion::Rest) | (StopKind::Smooth, Motion::Stopping | Motion::AbruptPending) => {}
             (StopKind::Smooth, Motion::Planned) => {

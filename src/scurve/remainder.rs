@@ -75,22 +75,22 @@ impl Placement {
         self
     }
 
-    /// Whether every pair fits the main move within `jerk_limit` (raw units), by O(1)
-    /// inequalities per pair:
+    /// Whether the pairs from the `checked`-th on fit the main move within `jerk_limit` (raw
+    /// units), together with those before (which fit already), by O(1) inequalities per pair:
     ///
     /// - each lowered window `[s, s + w)` ends by `first_deceleration` (the acceleration is ≥ 0
     ///   there, so at most three units lower is far within the limit, which is ≥ 2^16), each
     ///   raised window starts from `rise_end − 1` on (the acceleration is ≤ 0 there);
-    /// - on each cycle where a pair changes the jerk, the main move's jerk plus every pair's
-    ///   change on that cycle is within the limit;
+    /// - on each cycle where a new pair changes the jerk, the main move's jerk plus every pair's
+    ///   change on that cycle is within the limit — decided by the [`Bounds`] where the main
+    ///   move's jerk has the sign that makes room (≥ 0 for a lower jerk, ≤ 0 for a higher), and
+    ///   by the main move's exact jerk elsewhere;
     /// - every dip ends by the move's third-last cycle, and the main move's velocity at the first
-    ///   and at the last cycle of each dip is at least the dips' combined depth there.
-    pub fn fits(&self, main: &MainMove, bounds: &Bounds, jerk_limit: u64) -> bool {
+    ///   and at the last cycle of each new dip is at least the dips' combined depth there.
+    pub fn fits(&self, checked: usize, main: &MainMove, bounds: &Bounds, jerk_limit: u64) -> bool {
         let notches = self.notches();
-        if notches.is_empty() {
-            return true;
-        }
-        let windows = notches.iter().all(|n| {
+        let new = &notches[checked.min(notches.len())..];
+        let windows = new.iter().all(|n| {
             n.width > 0
                 && n.span > n.width
                 && n.start + n.width <= bounds.first_deceleration
@@ -101,7 +101,13 @@ impl Placement {
             return false;
         }
         let limit = jerk_limit as i64;
-        let jerk_fits = notches.iter().all(|notch| {
+        let lower_fits = |n: u64| {
+            n < bounds.first_fall_end
+                || (bounds.rise_end..bounds.first_deceleration).contains(&n)
+                || n >= bounds.deceleration_jerked
+        };
+        let higher_fits = |n: u64| (bounds.last_rise_start..bounds.first_landing).contains(&n);
+        let jerk_fits = new.iter().all(|notch| {
             notch.impulses().iter().all(|&(cycle, _)| {
                 let added: i64 = notches
                     .iter()
@@ -109,19 +115,22 @@ impl Placement {
                     .filter(|&(at, _)| at == cycle)
                     .map(|(_, amount)| amount)
                     .sum();
-                (main.jerk_at(cycle) + added).abs() <= limit
+                // Where the main move's jerk is known to leave room, |added| ≤ 3 ≤ … is enough
+                // (a main jerk in [0, J] less up to J, or in [−J, 0] plus up to J).
+                let room = (added <= 0 && lower_fits(cycle)) || (added >= 0 && higher_fits(cycle));
+                (room && added.abs() <= limit) || (main.jerk_at(cycle) + added).abs() <= limit
             })
         });
         // The dips: at the first and last cycle of each, the main move's velocity covers them
         // all. Inside, the main move's velocity rises (falls) faster than the dips deepen, on
         // every cycle where the acceleration is at least their number; the schedule's one pass
-        // ([`super::schedule::Schedule::with_peaks`]) has the last word.
+        // ([`super::schedule::Schedule::find_peaks`]) has the last word.
         let covered = |n: u64| {
             let depth: u64 = notches.iter().map(|notch| notch.depth_at(n)).sum();
             main.velocity_at(n) >= depth
         };
         jerk_fits
-            && notches
+            && new
                 .iter()
                 .all(|notch| covered(notch.start) && covered(notch.last_dip()))
     }
@@ -199,9 +208,18 @@ fn place(first: Interval, second: Interval, width: u64, span: u64) -> Option<Not
     })
 }
 
-/// `⌈n / d⌉` for signed `n`, `d > 0`.
-fn div_ceil(n: i64, d: i64) -> i64 {
-    -((-n).div_euclid(d))
+/// `⌊n / d⌋` for signed `n` and `d > 0`, in 32 bits where both fit (a 64-bit division is a
+/// library call on a 32-bit microcontroller, a 32-bit one a single instruction).
+fn floor_div(n: i64, d: i64) -> i64 {
+    match (i32::try_from(n), i32::try_from(d)) {
+        (Ok(n), Ok(d)) => i64::from(n.div_euclid(d)),
+        _ => n.div_euclid(d),
+    }
+}
+
+/// `⌈n / d⌉` for signed `n` and `d > 0`.
+fn ceil_div(n: i64, d: i64) -> i64 {
+    -floor_div(-n, d)
 }
 
 /// Two notch pairs, of widths `w` and `w + 1`, with spans in `range`, taking exactly `left`:
@@ -209,7 +227,7 @@ fn div_ceil(n: i64, d: i64) -> i64 {
 /// are `k₁ = r + (w + 1)·t`, `k₂ = q − w·t`, and the inequalities of `range` bound `t`.
 fn solve_spans(left: u64, width: u64, range: (u64, u64)) -> Option<(u64, u64)> {
     // No span is longer than left / w, so clamping the range there keeps every value below
-    // `left` (a few areas, < 2^50): 64-bit arithmetic, no 128-bit division on a 32-bit target.
+    // `left` (a few areas, < 2^50): 64-bit arithmetic, 32-bit divisions where they fit.
     let high = range.1.min(left / width);
     let (w, left, low, high) = (
         i64::try_from(width).ok()?,
@@ -217,10 +235,11 @@ fn solve_spans(left: u64, width: u64, range: (u64, u64)) -> Option<(u64, u64)> {
         i64::try_from(range.0).ok()?,
         i64::try_from(high).ok()?,
     );
-    let r = (-left).rem_euclid(w + 1);
-    let q = (left - w * r) / (w + 1);
-    let t_low = div_ceil(low - r, w + 1).max(div_ceil(q - high, w));
-    let t_high = (high - r).div_euclid(w + 1).min((q - low).div_euclid(w));
+    // r = (−left) mod (w + 1) = w − ((left + w) mod (w + 1)).
+    let r = w - (left + w - (w + 1) * floor_div(left + w, w + 1));
+    let q = floor_div(left - w * r, w + 1);
+    let t_low = ceil_div(low - r, w + 1).max(ceil_div(q - high, w));
+    let t_high = floor_div(high - r, w + 1).min(floor_div(q - low, w));
     if t_low > t_high {
         return None;
     }
@@ -279,8 +298,9 @@ pub(super) fn take(
     }
     let try_fit = |pairs: &[Notch]| {
         let placement = pairs.iter().fold(placed, |p, &n| p.with(n));
+        let checked = placed.notches().len();
         placement
-            .fits(main, bounds, jerk_limit)
+            .fits(checked, main, bounds, jerk_limit)
             .then_some(placement)
     };
     for which_first in 0..2 {

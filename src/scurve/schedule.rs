@@ -5,15 +5,17 @@ use super::remainder::{Placement, MAX_NOTCHES};
 use super::shape::MainMove;
 use super::ScurvePlan;
 
-/// A jerk change: the jerk changes by `amount` (2^-32 counts/cycle³, the direction of the move
-/// folded in) on a cycle.
+/// A jerk change (2^-32 counts/cycle³, the direction of the move folded in).
+///
+/// While the schedule is built and checked, `cycle` is the cycle whose acceleration is the first
+/// to see the change (0 = the first step) and `amount` the change. Once it is sealed
+/// ([`Schedule::seal`]), it is what a replay needs and nothing more: `cycle` is the number of
+/// cycles the change holds (to the next one) and `amount` the jerk it sets.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub(super) struct JerkChange {
-    /// While the schedule is built and checked: the cycle whose acceleration is the first to
-    /// see the change (0 = the first step). Once it is sealed ([`Schedule::seal`]): the cycles
-    /// from this change to the next, which is what a replay counts down.
+    /// The cycle of the change; sealed: the cycles it holds.
     pub cycle: u64,
-    /// The change of the jerk, raw units.
+    /// The change of the jerk, raw units; sealed: the jerk from this change on.
     pub amount: i64,
 }
 
@@ -24,6 +26,10 @@ pub(super) struct JerkChange {
 /// never come together): 44, and the end marker — 64, a power of two, so that a replay indexes
 /// it with a mask instead of a bounds check.
 pub(super) const MAX_CHANGES: usize = 64;
+
+/// The index of the sentinel, a change that holds no cycle (never written: a schedule has at
+/// most 45 changes). A replay pointed at it takes the slow path on its next event.
+pub(super) const SENTINEL: usize = MAX_CHANGES - 1;
 
 /// The exact limits in I32F32 bits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -216,24 +222,28 @@ impl Schedule {
         self.len = kept;
     }
 
-    /// Makes the checked schedule a replay: appends the end marker (on cycle `total`, bringing
-    /// the jerk back to zero; the acceleration and velocity are zero there already) and turns
-    /// each change's cycle into the cycles to the next change (the marker's: never).
+    /// Makes the checked schedule a replay: appends the end marker (on cycle `total`, setting the
+    /// jerk to zero; the acceleration and velocity are zero there already), and turns each change
+    /// into the jerk it sets and the cycles it holds (the marker's: for ever).
     pub fn seal(&mut self) {
         // A replay starts with the change on cycle 0: one of nothing if the changes there
         // cancelled out.
         if self.changes().first().is_none_or(|c| c.cycle > 0) {
             self.add_first(JerkChange::default());
         }
-        let end = self.len.min(MAX_CHANGES - 1);
-        let pending: i64 = self.changes[..end].iter().map(|c| c.amount).sum();
+        let end = self.len.min(SENTINEL - 1);
         self.changes[end] = JerkChange {
             cycle: self.plan.total,
-            amount: -pending,
+            amount: 0,
         };
         self.len = end + 1;
+        let mut jerk = 0;
         for i in 0..end {
-            self.changes[i].cycle = self.changes[i + 1].cycle - self.changes[i].cycle;
+            jerk += self.changes[i].amount;
+            self.changes[i] = JerkChange {
+                cycle: self.changes[i + 1].cycle - self.changes[i].cycle,
+                amount: jerk,
+            };
         }
         self.changes[end].cycle = u64::MAX;
     }
@@ -261,74 +271,79 @@ impl Schedule {
         let (mut peak_acceleration, mut peak_velocity) = (0i64, 0i64);
         #[cfg(debug_assertions)]
         let mut covered = 0i128;
-        let mut next = 0;
-        let mut at = 0u64;
-        while at < total {
-            if let Some(change) = self.changes().get(next).filter(|c| c.cycle == at) {
-                jerk = jerk.checked_add(change.amount * direction)?;
-                next += 1;
+        let changes = self.changes();
+        // Before the first change (if it is not on cycle 0) nothing moves.
+        for (i, change) in changes.iter().enumerate() {
+            if change.cycle >= total {
+                break;
             }
-            let end = self
-                .changes()
-                .get(next)
-                .map_or(total, |c| c.cycle.min(total));
-            let cycles = end - at;
-            // Widths that keep every product in 64 bits (a valid run is far shorter: a run
-            // with a jerk changes the acceleration by at most 2A < 2^33, one with an
-            // acceleration changes the velocity by at most V < 2^47).
-            if jerk.abs() > j_max || (jerk != 0 && cycles > 1 << 30) {
-                return None;
-            }
-            let m = cycles as i64; // < 2^30 whenever it is multiplied below
-            let last_acceleration = acceleration + jerk * m.min(1 << 30);
-            let steepest = (acceleration + jerk).abs().max(last_acceleration.abs());
-            if steepest > a_max {
-                return None;
-            }
-            // The velocity after n cycles of the run: v + a·n + j·n(n+1)/2. With the
-            // acceleration within its limit at both ends, |j·(m − 1)| ≤ 2A < 2^33, and m < 2^30
-            // wherever j ≠ 0, so each product below stays under 2^62.
-            let velocity_after = |n: u64| -> Option<i64> {
-                let slope = acceleration.unsigned_abs();
-                if slope != 0 && (64 - slope.leading_zeros()) + (64 - n.leading_zeros()) > 62 {
-                    return None; // |a·n| ≥ 2^61: far past any velocity limit
-                }
-                let n = n as i64;
-                let ramp = match jerk {
-                    0 => 0,
-                    j if n % 2 == 0 => j * (n / 2) * (n + 1),
-                    j => j * n * ((n + 1) / 2),
-                };
-                Some(velocity + acceleration * n + ramp)
-            };
-            // The turning point of the velocity, n* = −acceleration/jerk − ½, matters only where
-            // the acceleration changes sign inside the run.
-            let turns = (acceleration + jerk).signum() * last_acceleration.signum() < 0;
-            let turn = if turns {
-                (-2 * acceleration - jerk).div_euclid(2 * jerk).max(1) as u64
+            jerk += if direction < 0 {
+                -change.amount
             } else {
-                1
+                change.amount
             };
-            for n in [1, cycles, turn, turn + 1] {
-                if (1..=cycles).contains(&n) {
-                    let v = velocity_after(n)?;
-                    if !(0..=v_max).contains(&v) {
-                        return None;
-                    }
-                    peak_velocity = peak_velocity.max(v);
+            let end = changes.get(i + 1).map_or(total, |c| c.cycle.min(total));
+            let cycles = end - change.cycle;
+            #[cfg(debug_assertions)]
+            let start = (velocity, acceleration);
+            // Within the limits every product below stays under 2^62: a run with a jerk is at
+            // most 2^30 cycles (its acceleration changes by j·m ≤ 2A < 2^33), one with only an
+            // acceleration moves the velocity by a·m, checked by the widths of a and m.
+            let (first, last) = if jerk == 0 {
+                let slope = acceleration.unsigned_abs();
+                if slope != 0 && (128 - slope.leading_zeros() - cycles.leading_zeros()) > 62 {
+                    return None;
                 }
+                velocity += acceleration * cycles as i64;
+                (acceleration, acceleration)
+            } else {
+                if jerk.abs() > j_max || cycles > 1 << 30 {
+                    return None;
+                }
+                let m = cycles as i64;
+                let (first, last) = (acceleration + jerk, acceleration + jerk * m);
+                if first.abs() > a_max || last.abs() > a_max {
+                    return None;
+                }
+                // The velocity after n cycles: v + a·n + j·n(n+1)/2 (n(n+1) is even).
+                let after = |n: i64| {
+                    let ramp = if n % 2 == 0 {
+                        jerk * (n / 2) * (n + 1)
+                    } else {
+                        jerk * n * ((n + 1) / 2)
+                    };
+                    velocity + acceleration * n + ramp
+                };
+                // The velocity turns inside the run only where the acceleration changes sign:
+                // at n* = ⌊−acceleration/jerk − ½⌋ or the cycle after.
+                if first.signum() * last.signum() < 0 {
+                    let turn = (-2 * acceleration - jerk).div_euclid(2 * jerk);
+                    for n in [turn, turn + 1] {
+                        if (1..=m).contains(&n) {
+                            let v = after(n);
+                            if !(0..=v_max).contains(&v) {
+                                return None;
+                            }
+                            peak_velocity = peak_velocity.max(v);
+                        }
+                    }
+                }
+                velocity = after(m);
+                (first, last)
+            };
+            // The velocity is monotone on the run otherwise: its start was the last run's end.
+            if !(0..=v_max).contains(&velocity) {
+                return None;
             }
-            peak_acceleration = peak_acceleration.max(steepest);
-            // The distance, Σ_{n=1..m} velocity_after(n): exact by construction, so summed (in
-            // 128 bits) only where debug assertions are on, as in every test run.
+            peak_velocity = peak_velocity.max(velocity);
+            peak_acceleration = peak_acceleration.max(first.abs()).max(last.abs());
+            acceleration = last;
             #[cfg(debug_assertions)]
             {
-                covered += run_distance(velocity, acceleration, jerk, cycles);
+                covered += run_distance(start.0, start.1, jerk, cycles);
             }
-            (acceleration, velocity) = (last_acceleration, velocity_after(cycles)?);
-            at = end;
         }
-        if acceleration != 0 || velocity != 0 {
+        if acceleration != 0 || velocity != 0 || peak_acceleration > a_max {
             return None;
         }
         #[cfg(debug_assertions)]

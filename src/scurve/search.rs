@@ -36,27 +36,35 @@ struct Candidate {
     mix: Mix,
     notch: u64,
     c: u64,
-    total: u64,
 }
 
-/// At most this many shapes: two first ramps × three second ramps × two mixes.
-const MAX_CANDIDATES: usize = 12;
+/// Ramps `(a, b)` and the cruise velocity they aim at; `cycles` is the move's length if the
+/// unit mix meets that velocity exactly.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+struct Shape {
+    a: u64,
+    b: u64,
+    target: u64,
+    cycles: u64,
+}
 
-/// The shapes worth trying for a move of `distance` (2^-32 counts) within `limits`, each with
-/// the shortest cruise that covers the distance, fastest first.
+/// At most this many shapes: two first ramps × three second ramps.
+const MAX_SHAPES: usize = 6;
+
+/// The shapes worth trying for a move of `distance` (2^-32 counts) within `limits`, fastest
+/// first (`(shapes, how many)`).
 ///
 /// The continuous optimum has jerk phases of `a* = min(A/J, √(V/J), ∛(D/2J))` cycles; the first
 /// ramp is its floor or ceiling. For each, the second ramp is the one that reaches the maximum
 /// velocity (`⌈V/peak⌉`) or the ones the distance allows with no cruise (the floor and ceiling
-/// of the root of `peak·b·(a + b) = D`), whichever is shorter; each with the mix that meets the
-/// velocity exactly or from below, and the one from above with a velocity notch.
-fn candidates(distance: u64, limits: Limits64) -> Candidates {
+/// of the root of `peak·b·(a + b) = D`), whichever is shorter.
+fn shapes(distance: u64, limits: Limits64) -> ([Shape; MAX_SHAPES], usize) {
     let (jerk, acceleration, velocity) = (limits.jerk, limits.acceleration, limits.velocity);
     let by_acceleration = acceleration / jerk;
     let by_velocity = (velocity / jerk).isqrt();
     let by_distance = cube_root(distance / (2 * jerk));
     let a0 = by_acceleration.min(by_velocity).min(by_distance);
-    let mut found = [None; MAX_CANDIDATES];
+    let mut found = [Shape::default(); MAX_SHAPES];
     let mut len = 0;
     // The floor and the ceiling of a* (both 1 when a* < 1).
     let firsts = if a0 == 0 { 1..=1 } else { a0..=a0 + 1 };
@@ -95,72 +103,72 @@ fn candidates(distance: u64, limits: Limits64) -> Candidates {
             if target == 0 {
                 continue;
             }
-            for under in [true, false] {
-                let Some(mix) = Mix::solve(a, b, jerk, acceleration, target, under) else {
-                    continue;
-                };
-                let notch = mix.velocity.saturating_sub(target);
-                if (!under && notch == 0) || notch > b {
-                    continue; // the same as the first, or a notch too wide to fit
-                }
-                let cruise = mix.velocity - notch;
-                // c·velocity − notch·(c − 1) ≥ distance.
-                let c = distance.saturating_sub(notch).div_ceil(cruise).max(a + b);
-                if len < MAX_CANDIDATES {
-                    found[len] = Some(Candidate {
-                        mix,
-                        notch,
-                        c,
-                        total: a + b + c,
-                    });
-                    len += 1;
-                }
+            let shape = Shape {
+                a,
+                b,
+                target,
+                cycles: a + b + distance.div_ceil(target).max(a + b),
+            };
+            // Fastest first (an insertion sort of at most six).
+            let mut k = len;
+            while k > 0 && found[k - 1].cycles > shape.cycles {
+                found[k] = found[k - 1];
+                k -= 1;
             }
+            found[k] = shape;
+            len += 1;
         }
     }
-    // Fastest first (an insertion sort of at most a dozen indices).
-    let mut order = [0u8; MAX_CANDIDATES];
-    for i in 0..len {
-        let total = |k: u8| found[usize::from(k)].map_or(u64::MAX, |c| c.total);
-        let mut k = i;
-        while k > 0 && total(order[k - 1]) > found[i].map_or(u64::MAX, |c| c.total) {
-            order[k] = order[k - 1];
-            k -= 1;
+    (found, len)
+}
+
+impl Shape {
+    /// The shape with the unit mix that meets its velocity exactly or from below (`under`), or
+    /// from above with a velocity notch, and the shortest cruise that covers the distance.
+    fn candidate(&self, under: bool, distance: u64, limits: Limits64) -> Option<Candidate> {
+        let (a, b, target) = (self.a, self.b, self.target);
+        let mix = Mix::solve(a, b, limits.jerk, limits.acceleration, target, under)?;
+        let notch = mix.velocity.saturating_sub(target);
+        if (!under && notch == 0) || notch > b {
+            return None; // the same as the first, or a notch too wide to fit
         }
-        order[k] = i as u8;
-    }
-    Candidates { found, order, len }
-}
-
-/// The candidate shapes and the order to try them in.
-struct Candidates {
-    found: [Option<Candidate>; MAX_CANDIDATES],
-    order: [u8; MAX_CANDIDATES],
-    len: usize,
-}
-
-impl Candidates {
-    /// Fastest first.
-    fn iter(&self) -> impl Iterator<Item = &Candidate> {
-        self.order[..self.len]
-            .iter()
-            .filter_map(|&k| self.found[usize::from(k)].as_ref())
+        let cruise = mix.velocity - notch;
+        if cruise == 0 {
+            return None;
+        }
+        // c·velocity − notch·(c − 1) ≥ distance.
+        let c = distance.saturating_sub(notch).div_ceil(cruise).max(a + b);
+        Some(Candidate { mix, notch, c })
     }
 }
 
 /// Plans a move of `distance` (> 1, 2^-32 counts) in `direction` (±1) within `limits` into
-/// `out`: the fastest candidate shape whose remainder fits, else the one-cycle ramps, which
-/// always do. `false` (and `out` unusable) if nothing fits.
+/// `out`: the fastest shape whose remainder fits, else the one-cycle ramps, which always do.
+/// `false` (and `out` unusable) if nothing fits.
 pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut Schedule) -> bool {
     let move_ = Move {
         distance,
         direction,
         limits,
     };
-    for candidate in candidates(distance, limits).iter() {
-        for extra in 0..2 {
-            if complete(candidate, candidate.c + extra, &move_, out) {
-                return true;
+    let (found, len) = shapes(distance, limits);
+    for shape in &found[..len] {
+        // The mix that meets the velocity from below, and — unless it meets it exactly — the
+        // one from above with a velocity notch; the faster first.
+        let under = shape.candidate(true, distance, limits);
+        let over = match under {
+            Some(c) if c.mix.velocity == shape.target => None,
+            _ => shape.candidate(false, distance, limits),
+        };
+        let (first, second) = match (under, over) {
+            (Some(u), Some(o)) if o.c < u.c => (over, under),
+            _ => (under, over),
+        };
+        for candidate in [first, second].iter().flatten() {
+            for extra in 0..2 {
+                if complete(candidate, candidate.c + extra, &move_, out) {
+                    return true;
+                }
             }
         }
     }
@@ -171,9 +179,13 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
             jerk: limits.jerk - 2,
             ..limits
         };
-        for candidate in candidates(distance, spare).iter().filter(|c| c.notch == 0) {
+        let (found, len) = shapes(distance, spare);
+        for shape in &found[..len] {
+            let Some(candidate) = shape.candidate(true, distance, spare) else {
+                continue;
+            };
             for extra in 0..2 {
-                if complete_fine(candidate, candidate.c + extra, &move_, out) {
+                if complete_fine(&candidate, candidate.c + extra, &move_, out) {
                     return true;
                 }
             }
@@ -244,7 +256,7 @@ fn complete(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule) -> 
             return false;
         };
         placement = placement.with(velocity_notch);
-        if !placement.fits(&main, &bounds, move_.limits.jerk) {
+        if !placement.fits(0, &main, &bounds, move_.limits.jerk) {
             return false;
         }
     }
@@ -259,7 +271,7 @@ fn complete(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule) -> 
             early[k] -= given;
             let main = mix.main_move(c, early);
             // Fewer early units can only move phase V later; the pairs must still fit.
-            if !placement.fits(&main, &main.bounds(), jerk) {
+            if !placement.fits(0, &main, &main.bounds(), jerk) {
                 return false;
             }
             main

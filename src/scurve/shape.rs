@@ -219,13 +219,15 @@ impl Mix {
         // A unit (a, b − 1) with b = a would have its ramps the other way round (its peak
         // acceleration is a − 1): second ramps are shortened only with b > a.
         let long_room = if b > a { long } else { 0 };
-        let below_limit = peak < acceleration && a > 1;
+        // Long units made short: below the acceleration limit, or with a = 1, where a short
+        // unit is no unit (fewer units, a lower peak acceleration).
+        let below_limit = peak < acceleration || a == 1;
         // (x, y, z): x units (a, b − 1), y units (a − 1, b − 1) from the short ones, z long
         // units made short (a − 1, b), which only a peak below the acceleration limit allows.
         let (x, y, z) = split(lowering, a, long_room, short)
             .map(|(x, y)| (x, y, 0))
             .or_else(|| {
-                below_limit
+                (below_limit && a > 1)
                     .then(|| by_shorter_first_ramps(lowering, a, b, long_room, long))
                     .flatten()
             })
