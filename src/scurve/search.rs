@@ -48,8 +48,8 @@ struct Shape {
     cycles: u64,
 }
 
-/// At most this many shapes: two first ramps × three second ramps.
-const MAX_SHAPES: usize = 6;
+/// At most this many shapes: two first ramps × four second ramps.
+const MAX_SHAPES: usize = 8;
 
 /// The shapes worth trying for a move of `distance` (2^-32 counts) within `limits`, fastest
 /// first (`(shapes, how many)`).
@@ -57,7 +57,7 @@ const MAX_SHAPES: usize = 6;
 /// The continuous optimum has jerk phases of `a* = min(A/J, √(V/J), ∛(D/2J))` cycles; the first
 /// ramp is its floor or ceiling. For each, the second ramp is the one that reaches the maximum
 /// velocity (`⌈V/peak⌉`) or the ones the distance allows with no cruise (the floor and ceiling
-/// of the root of `peak·b·(a + b) = D`), whichever is shorter.
+/// of the root of `peak·b·(a + b) = D`, and one shorter), whichever is shorter.
 fn shapes(distance: u64, limits: Limits64) -> ([Shape; MAX_SHAPES], usize) {
     let (jerk, acceleration, velocity) = (limits.jerk, limits.acceleration, limits.velocity);
     let by_acceleration = acceleration / jerk;
@@ -82,10 +82,15 @@ fn shapes(distance: u64, limits: Limits64) -> ([Shape; MAX_SHAPES], usize) {
             u64::try_from(square.isqrt()).unwrap_or(u64::MAX)
         };
         let no_cruise = (root - a) / 2;
-        let mut tried = [0u64; 3];
-        for (i, b) in [no_cruise, no_cruise + 1, to_velocity]
-            .into_iter()
-            .enumerate()
+        let mut tried = [0u64; 4];
+        for (i, b) in [
+            no_cruise,
+            no_cruise + 1,
+            to_velocity,
+            no_cruise.saturating_sub(1),
+        ]
+        .into_iter()
+        .enumerate()
         {
             let b = b.clamp(a, to_velocity);
             if tried[..i].contains(&b) {
@@ -175,9 +180,11 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
     // Moves of a few cycles with a large jerk can be too short for notch pairs: two units of
     // the jerk kept aside take the rest as fine units.
     if limits.jerk > 2 {
+        // Two units to spare in jerk, acceleration and velocity: two fine units fit anywhere.
         let spare = Limits64 {
             jerk: limits.jerk - 2,
-            ..limits
+            acceleration: limits.acceleration - 2,
+            velocity: limits.velocity - 2,
         };
         let (found, len) = shapes(distance, spare);
         for shape in &found[..len] {
