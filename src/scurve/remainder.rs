@@ -319,12 +319,17 @@ pub(super) fn take(
                     return Some((found, q));
                 }
             }
-            // The widths whose spans land in the middle of the range.
-            let estimate = |range: Interval| {
+            // The widths whose spans land in the middle of their range: from spans of half
+            // the move, refined twice (the range depends a little on the width).
+            let refine = |width: u64| {
+                let range = region(width).2;
+                if range.0 > range.1 {
+                    return width;
+                }
                 let middle = (range.0 / 2 + range.1 / 2).max(1);
                 (left / middle.saturating_mul(2).saturating_add(1)).max(1)
             };
-            let guess = estimate(region(estimate(region(1).2)).2);
+            let guess = refine(refine((left / bounds.total.max(1)).max(1)));
             let ramp = bounds.last_rise_start;
             let widths =
                 (guess.saturating_sub(1).max(1)..guess + WIDTH_TRIES).chain([ramp / 2, ramp]);

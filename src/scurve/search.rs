@@ -252,8 +252,8 @@ fn complete(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule) -> 
     let areas = mix.areas();
     let (mut early, over) = early_units(mix, c, over);
     // Units given back (cruise restored) when the rest is too small for notch pairs: of the
-    // smallest early kind.
-    let give_back = (0..4).rev().find(|&k| early[k] > 0);
+    // kind with the most early units (the widest choice of sums).
+    let give_back = (0..4).filter(|&k| early[k] > 0).max_by_key(|&k| early[k]);
     let (area, available) = give_back.map_or((0, 0), |k| (areas[k], early[k]));
     let main = mix.main_move(c, early);
     let bounds = main.bounds();
