@@ -106,7 +106,14 @@ impl Schedule {
     /// group corners arrive slot by slot, nearly in order, so this is a step or two each), added
     /// to a change on the same cycle.
     fn add(&mut self, cycle: u64, amount: i64) {
-        let mut at = self.len;
+        // Nearly always on the last cycle, or after it.
+        if let Some(last) = self.len.checked_sub(1).map(|i| &mut self.changes[i % MAX_CHANGES]) {
+            if last.cycle == cycle {
+                last.amount += amount;
+                return;
+            }
+        }
+        let mut at = self.len.min(SENTINEL - 1);
         while at > 0 && self.changes[at - 1].cycle > cycle {
             at -= 1;
         }
@@ -114,7 +121,7 @@ impl Schedule {
             self.changes[at - 1].amount += amount;
             return;
         }
-        if self.len + 1 >= MAX_CHANGES {
+        if self.len + 1 >= SENTINEL {
             return; // Unreachable: MAX_CHANGES covers every group and pair, and the marker.
         }
         let mut k = self.len;

@@ -165,11 +165,13 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
             Some(c) if c.mix.velocity == shape.target => None,
             _ => shape.candidate(false, distance, limits),
         };
-        let (first, second) = match (under, over) {
-            (Some(u), Some(o)) if o.c < u.c => (over, under),
-            _ => (under, over),
+        let over_first = matches!((&under, &over), (Some(u), Some(o)) if o.c < u.c);
+        let order = if over_first {
+            [&over, &under]
+        } else {
+            [&under, &over]
         };
-        for candidate in [first, second].iter().flatten() {
+        for candidate in order.into_iter().flatten() {
             for extra in 0..2 {
                 if complete(candidate, candidate.c + extra, &move_, out) {
                     return true;
