@@ -2,6 +2,10 @@
 
 mod strategies;
 
+#[allow(dead_code)] // the tests take only `scurve_move`
+#[path = "../benches/common/moves.rs"]
+mod moves;
+
 use fixed::types::I32F32;
 use profilegen::conformance::{check_abrupt_stop, Checker};
 use profilegen::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
@@ -78,7 +82,7 @@ fn the_datasheet_move() {
     // to the raw unit, not at the nearest peak the ramps' integer shapes give.
     let peak_velocity = states.iter().map(|s| s.velocity).max().unwrap();
     assert_eq!(peak_velocity, I32F32::from_num(2.75));
-    assert!(plan.total as f64 <= optimum(&p, 1_000.0) + 4.0);
+    assert!(plan.total as f64 <= optimum(&p, 1_000.0) + 3.0);
 }
 
 /// Phases II and VI vanish when the maximum acceleration is not reached before half the maximum
@@ -113,7 +117,7 @@ fn truncated_no_cruise() {
     assert!(plan.phases[3] <= 8, "{plan:?}");
     let states = run_move(&mut axis).unwrap();
     assert_eq!(states.last().unwrap().position, 200);
-    assert!(plan.total as f64 <= optimum(&p, 200.0) + 4.0);
+    assert!(plan.total as f64 <= optimum(&p, 200.0) + 3.0);
 }
 
 /// Phases II, VI and IV all present: acceleration- and velocity-limited.
@@ -127,7 +131,7 @@ fn all_seven_phases() {
     assert_eq!(plan.phases[4], plan.phases[6]);
     let states = run_move(&mut axis).unwrap();
     assert_eq!(states.last().unwrap().position, -100_000);
-    assert!(plan.total as f64 <= optimum(&p, 100_000.0) + 4.0);
+    assert!(plan.total as f64 <= optimum(&p, 100_000.0) + 3.0);
 }
 
 /// Small jerks, where the remainder of the distance has no room in a cruise: moves that took
@@ -160,11 +164,38 @@ fn small_jerks_stay_within_the_bound() {
         );
         let best = optimum(&p, f64::from(counts));
         assert!(
-            plan.total as f64 <= best + 4.0,
+            plan.total as f64 <= best + 3.0,
             "{p:?}: {} cycles, optimum {best}",
             plan.total
         );
     }
+}
+
+/// The duration over 20,000 seeded random moves across the whole register ranges (the moves the
+/// `planning` bench and the Cortex-M4 probe plan): every plan within 3 cycles of the continuous
+/// optimum, and within 1.2 cycles on average (issue #11; the old planner's mean was +1.18).
+#[test]
+fn durations_over_the_register_ranges() {
+    let moves = 20_000;
+    let mut excess_sum = 0.0;
+    for index in 0..moves {
+        let (destination, velocity, acceleration, jerk) = moves::scurve_move(index);
+        let p = ScurveParameters {
+            destination: Destination::from_bits(destination).unwrap(),
+            max_velocity: MaxVelocity::from_bits(velocity).unwrap(),
+            max_acceleration: ScurveAcceleration::from_bits(acceleration).unwrap(),
+            jerk: Jerk::from_bits(jerk).unwrap(),
+        };
+        let plan = SCurve::new(p).unwrap().plan();
+        let excess = plan.total as f64 - optimum(&p, f64::from(destination).abs());
+        assert!(
+            excess <= 3.0,
+            "move {index}: {excess} cycles over the optimum"
+        );
+        excess_sum += excess;
+    }
+    let mean = excess_sum / moves as f64;
+    assert!(mean <= 1.2, "mean {mean} cycles over the optimum");
 }
 
 #[test]
@@ -380,7 +411,7 @@ proptest! {
     /// Random moves over the register ranges: the plan predicts the move, every cycle is within
     /// J, A and V (the conformance checker), the position is monotone and never passes the
     /// destination, and the last state is exactly the destination with velocity and acceleration
-    /// zero, within 4 cycles of the continuous optimum (SPEC §8); the plan's peak velocity and
+    /// zero, within 3 cycles of the continuous optimum (SPEC §8); the plan's peak velocity and
     /// acceleration are the move's.
     #[test]
     fn random_moves(p in scurve_move()) {
@@ -397,7 +428,7 @@ proptest! {
         prop_assert_eq!(peak_velocity.to_bits(), plan.peak_velocity);
         prop_assert_eq!(peak_acceleration.to_bits(), plan.peak_acceleration);
         let best = optimum(&p, f64::from(p.destination.to_bits()).abs());
-        prop_assert!(plan.total as f64 <= best + 4.0, "{} cycles, optimum {}", plan.total, best);
+        prop_assert!(plan.total as f64 <= best + 3.0, "{} cycles, optimum {}", plan.total, best);
     }
 
     /// Moves of a few raw units to a few counts from fractional positions (what stops leave),
@@ -423,14 +454,14 @@ proptest! {
         }
     }
 
-    /// Plans over the whole register ranges, moves of any length (too long to step): within 4
+    /// Plans over the whole register ranges, moves of any length (too long to step): within 3
     /// cycles of the continuous optimum, peaks within the limits.
     #[test]
     fn plans_of_any_length(p in any_scurve_move()) {
         let plan = SCurve::new(p).unwrap().plan();
         let best = optimum(&p, f64::from(p.destination.to_bits()).abs());
         prop_assert!(plan.total > 0 && plan.peak_velocity > 0, "a move is planned");
-        prop_assert!(plan.total as f64 <= best + 4.0, "{} cycles, optimum {}", plan.total, best);
+        prop_assert!(plan.total as f64 <= best + 3.0, "{} cycles, optimum {}", plan.total, best);
         prop_assert!(plan.peak_velocity <= i64::from(p.max_velocity.to_bits()) << 16);
         prop_assert!(plan.peak_acceleration <= i64::from(p.max_acceleration.to_bits()) << 16);
         prop_assert_eq!(plan.phases.iter().sum::<u64>(), plan.total);

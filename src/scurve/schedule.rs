@@ -107,7 +107,11 @@ impl Schedule {
     /// to a change on the same cycle.
     fn add(&mut self, cycle: u64, amount: i64) {
         // Nearly always on the last cycle, or after it.
-        if let Some(last) = self.len.checked_sub(1).map(|i| &mut self.changes[i % MAX_CHANGES]) {
+        if let Some(last) = self
+            .len
+            .checked_sub(1)
+            .map(|i| &mut self.changes[i % MAX_CHANGES])
+        {
             if last.cycle == cycle {
                 last.amount += amount;
                 return;

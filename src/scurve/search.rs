@@ -1,10 +1,12 @@
 //! The search for a plan: the continuous-time optimum in integers, a small fixed set of integer
 //! shapes around it, and the first of them, fastest first, whose remainder fits.
 //!
-//! Its cost does not depend on the move: integer square and cube roots (bitwise, a fixed number
-//! of steps), at most [`MAX_CANDIDATES`] shapes each solved in closed form, and for each one
-//! tried a fixed number of notch-pair placements ([`super::remainder::take`]); the schedule is
-//! built once, for the plan that wins.
+//! Its cost is bounded whatever the move: integer square and cube roots (a fixed number of
+//! steps), at most [`MAX_SHAPES`] shapes, each solved in closed form when it is tried (fastest
+//! first, so usually one), two cruise lengths and two unit mixes per shape, for each a fixed
+//! number of notch-pair placements ([`super::remainder::take`]); the schedule is built once, for
+//! the plan that wins. A last resort (two *fine units*, then ramps of one cycle) covers the few
+//! very short moves with a large jerk that notch pairs have no room in.
 
 use super::remainder::{self, velocity_notch, Placement};
 use super::schedule::{Limits64, Schedule};
