@@ -551,3 +551,89 @@ impl ProfileGenerator for SCurve {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// A raw value log-uniform in `1 ..= max`.
+    fn log_uniform(max: u64) -> impl Strategy<Value = u64> {
+        (1..=64 - max.leading_zeros()).prop_flat_map(move |bits| {
+            let low = 1u64 << (bits - 1);
+            low..=((low << 1) - 1).min(max)
+        })
+    }
+
+    /// What the sealed replay of a plan does, integrated in closed form per hold with 128-bit
+    /// sums (independent of the planner's own check): the position, velocity and acceleration
+    /// after the last cycle, and the largest |jerk| on the way.
+    fn replay_end(schedule: &Schedule) -> (i128, i128, i128, i128) {
+        let total = i128::from(schedule.plan.total);
+        let (mut position, mut velocity, mut acceleration, mut steepest) = (0i128, 0, 0, 0);
+        let mut cycle = 0i128;
+        for change in schedule.changes() {
+            let jerk = i128::from(change.amount);
+            steepest = steepest.max(jerk.abs());
+            let m = i128::from(change.cycle).min(total - cycle);
+            // m cycles of constant jerk: Σ velocity = m·v + a·m(m+1)/2 + j·m(m+1)(m+2)/6.
+            position += m * velocity + acceleration * (m * (m + 1) / 2);
+            if jerk != 0 {
+                position += jerk * (m * (m + 1) * (m + 2) / 6);
+            }
+            velocity += acceleration * m + jerk * (m * (m + 1) / 2);
+            acceleration += jerk * m;
+            cycle += m;
+            if cycle >= total {
+                break;
+            }
+        }
+        (position, velocity, acceleration, steepest)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(10_000))]
+
+        /// Every plan over the whole register ranges, moves of any length (too long to step),
+        /// from positions with any fraction: its replay covers exactly the distance and ends at
+        /// rest, its jerk within the limit, in exactly `plan.total` cycles.
+        #[test]
+        fn every_plan_lands_exactly(
+            destination in log_uniform((1 << 30) - 1),
+            negative in any::<bool>(),
+            start in any::<i64>(),
+            velocity in log_uniform(MaxVelocity::MAX_BITS.into()),
+            acceleration in log_uniform(ScurveAcceleration::MAX_BITS.into()),
+            jerk in log_uniform(Jerk::MAX_BITS.into()),
+        ) {
+            let destination = if negative { -(destination as i32) } else { destination as i32 };
+            let parameters = ScurveParameters {
+                destination: Destination::from_bits(destination).unwrap(),
+                max_velocity: MaxVelocity::from_bits(velocity as u32).unwrap(),
+                max_acceleration: ScurveAcceleration::from_bits(acceleration as u16).unwrap(),
+                jerk: Jerk::from_bits(jerk as u32).unwrap(),
+            };
+            let start = I32F32::from_bits(start);
+            let Ok(axis) = SCurve::with_position(parameters, start) else {
+                // Only the one distance no jerk-limited move covers.
+                let distance = (i64::from(destination) << 32).wrapping_sub(start.to_bits());
+                prop_assert!(distance.unsigned_abs() == 1 && jerk == 1);
+                return Ok(());
+            };
+            let distance = (i64::from(destination) << 32).wrapping_sub(start.to_bits());
+            if distance == 0 {
+                prop_assert_eq!(axis.plan().total, 0);
+                return Ok(());
+            }
+            let (position, velocity, acceleration, steepest) = replay_end(&axis.schedule);
+            prop_assert_eq!(position, i128::from(distance), "{:?}", axis.plan());
+            prop_assert_eq!((velocity, acceleration), (0, 0));
+            prop_assert!(steepest <= i128::from(jerk));
+            let holds: u64 = axis.schedule.changes()[..axis.schedule.changes().len() - 1]
+                .iter()
+                .map(|c| c.cycle)
+                .sum();
+            prop_assert_eq!(holds, axis.plan().total, "the replay takes exactly the plan's cycles");
+        }
+    }
+}
