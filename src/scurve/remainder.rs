@@ -313,12 +313,12 @@ pub(super) fn take(
     // in phases I–II with the second in the cruise or after phase V, and both in the cruise for
     // single pairs; first in the cruise, second after phase V, never did).
     for (first_in_cruise, second_in_cruise) in [(false, true), (false, false), (true, true)] {
-        // A pair's span exceeds its width (+2, so that the wider pair of two fits too).
+        // A pair's span exceeds its width.
         let region = |w: u64| {
             let first = firsts(bounds, w, first_in_cruise);
             let second = seconds(bounds, w, second_in_cruise);
             let (low, high) = spans(first, second);
-            (first, second, (low.max(w + 2), high))
+            (first, second, (low.max(w + 1), high))
         };
         for width in 1..=2 {
             let (first, second, range) = region(width);
