@@ -159,7 +159,8 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
         limits,
     };
     let (found, len) = shapes(distance, limits);
-    for shape in &found[..len] {
+    let mut planned = false;
+    'shapes: for shape in &found[..len] {
         // The mix that meets the velocity from below, and — unless it meets it exactly — the
         // one from above with a velocity notch; the faster first.
         let under = shape.candidate(true, distance, limits);
@@ -176,33 +177,51 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
         for candidate in order.into_iter().flatten() {
             for extra in 0..2 {
                 if complete(candidate, candidate.c + extra, &move_, out) {
-                    return true;
+                    planned = true;
+                    break 'shapes;
                 }
             }
         }
     }
-    // Moves of a few cycles with a large jerk can be too short for notch pairs: two units of
-    // the jerk kept aside take the rest as fine units.
-    if limits.jerk > 2 {
-        // Two units to spare in jerk, acceleration and velocity: two fine units fit anywhere.
-        let spare = Limits64 {
-            jerk: limits.jerk - 2,
-            acceleration: limits.acceleration - 2,
-            velocity: limits.velocity - 2,
+    // Moves of a few cycles with a large jerk can be too short for notch pairs: there, two
+    // units of the jerk kept aside take the rest as fine units — tried if no shape fit, or if
+    // only a slower one did in a short move (planned aside, the faster kept).
+    let fastest = found[..len].first().map_or(u64::MAX, |shape| shape.cycles);
+    let short = fastest < SHORT_MOVE;
+    if limits.jerk > 2 && (!planned || (short && out.plan.total > fastest + 1)) {
+        let mut fine = Schedule::EMPTY;
+        if with_fine_units(&move_, &mut fine) && (!planned || fine.plan.total < out.plan.total) {
+            *out = fine;
+            planned = true;
+        }
+    }
+    planned || one_cycle_ramps(&move_, out)
+}
+
+/// A move this many cycles long or more has room for notch pairs wherever a shape fits.
+const SHORT_MOVE: u64 = 100;
+
+/// The plan with two units of jerk, acceleration and velocity kept aside for two fine units,
+/// fastest shape first ([`complete_fine`]).
+fn with_fine_units(move_: &Move, out: &mut Schedule) -> bool {
+    let limits = move_.limits;
+    let spare = Limits64 {
+        jerk: limits.jerk - 2,
+        acceleration: limits.acceleration - 2,
+        velocity: limits.velocity - 2,
+    };
+    let (found, len) = shapes(move_.distance, spare);
+    for shape in &found[..len] {
+        let Some(candidate) = shape.candidate(true, move_.distance, spare) else {
+            continue;
         };
-        let (found, len) = shapes(distance, spare);
-        for shape in &found[..len] {
-            let Some(candidate) = shape.candidate(true, distance, spare) else {
-                continue;
-            };
-            for extra in 0..2 {
-                if complete_fine(&candidate, candidate.c + extra, &move_, out) {
-                    return true;
-                }
+        for extra in 0..2 {
+            if complete_fine(&candidate, candidate.c + extra, move_, out) {
+                return true;
             }
         }
     }
-    one_cycle_ramps(&move_, out)
+    false
 }
 
 /// What is being planned: the distance (2^-32 counts), the direction (±1), the limits.
@@ -302,24 +321,27 @@ fn complete_fine(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule
     };
     let (mut early, over) = early_units(mix, c, over);
     // Fine units add distance: one more early unit than fits (of the smallest kind that has
-    // one to spare), and the fine units make up the difference.
+    // one to spare), and the fine units make up the difference — two more if that difference
+    // is 1 (a fine unit of one cycle would jerk by 2).
     let mut left = 0;
-    if over > 0 {
-        let kinds = mix.kinds();
-        let Some(k) = (0..4).rev().find(|&k| {
-            early[k] < mix.counts[k] && c > kinds[k].0 + kinds[k].1 && mix.areas()[k] > 0
-        }) else {
+    let kinds = mix.kinds();
+    let areas = mix.areas();
+    let mut over = over;
+    while over > 0 || left == 1 {
+        let Some(k) = (0..4)
+            .rev()
+            .find(|&k| early[k] < mix.counts[k] && c > kinds[k].0 + kinds[k].1 && areas[k] > 0)
+        else {
             return false;
         };
         early[k] += 1;
-        left = mix.areas()[k] - over;
+        left = (left + areas[k]).saturating_sub(over);
+        over = over.saturating_sub(areas[k]);
     }
     let main = mix.main_move(c, early);
     let longest = main.bounds().total.saturating_sub(2);
     let main = match left {
         0 => main,
-        // A fine unit of one cycle would jerk by 2.
-        1 => return false,
         x if x <= longest => main.with_fine_unit(x),
         x if x - longest >= 2 && x - longest <= longest => {
             main.with_fine_unit(longest).with_fine_unit(x - longest)
