@@ -22,16 +22,16 @@
 //! # Duration and cost
 //!
 //! Every plan is within 3 cycles of the continuous-time optimum
-//! ([`crate::reference::scurve_duration`]): over 2,000,000 random moves across the register
-//! ranges the worst was +2.90 cycles and the mean +0.92. The integer plan may keep a cycle or two
+//! ([`crate::reference::scurve_duration`]): over 40,000,000 random moves across the register
+//! ranges the worst was +2.91 cycles and the mean +0.93. The integer plan may keep a cycle or two
 //! of constant acceleration below the maximum (phases II/VI) where the continuous optimum has
 //! none; [`ScurvePlan::phases`] reports the phases of the move's main units as they are.
 //!
 //! Planning takes a bounded number of integer operations, the same on every target (no floating
 //! point): at most eight shapes, each solved in closed form, a fixed number of notch-pair
 //! placements per shape, one schedule built and checked. Measured (see the README for the
-//! commands): 0.64 µs median, 2.6 µs at worst on the x86 development machine; 20,198 Cortex-M4
-//! instructions median, 37,755 at worst over 1,000 random moves. A step is at most 40 Cortex-M4
+//! commands): 0.64 µs median, 2.6 µs at worst on the x86 development machine; 20,195 Cortex-M4
+//! instructions median, 37,691 at worst over 1,000 random moves. A step is at most 40 Cortex-M4
 //! instructions.
 
 mod remainder;
