@@ -334,6 +334,35 @@ fn restart_after_a_stop() {
     }
 }
 
+/// A stop before the first step of a move (also one started on the cycle right after an abrupt
+/// stop) leaves the axis where it is, at rest, within the limits.
+#[test]
+fn a_stop_before_the_first_step() {
+    for kind in [StopKind::Smooth, StopKind::Abrupt] {
+        let mut axis = SCurve::new(parameters(1_000.0, 2.0, 0.1, 0.01)).unwrap();
+        let mut checker = Checker::new(&axis);
+        for _ in 0..100 {
+            checker.step(&mut axis).unwrap();
+        }
+        axis.stop(StopKind::Abrupt);
+        checker.step(&mut axis).unwrap();
+        let held = axis.state().position;
+        axis.restart(
+            Destination::from_num(0.0).unwrap(),
+            MaxVelocity::from_num(1.0).unwrap(),
+        )
+        .unwrap();
+        checker.command_given(&axis);
+        axis.stop(kind);
+        for _ in 0..5 {
+            let state = checker.step(&mut axis).unwrap();
+            assert_eq!(state.position, held, "{kind:?}");
+        }
+        assert!(axis.is_complete());
+        assert_eq!(axis.state(), State::at_rest(held));
+    }
+}
+
 /// Every distance a jerk-limited move can cover is covered exactly, however small — including
 /// the fractional ones a stop leaves — and the one it cannot (a raw unit with a jerk of a raw
 /// unit, which would need a jerk of 2) is a typed error, not a silent no-op.

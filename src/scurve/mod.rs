@@ -437,13 +437,7 @@ impl SCurve {
                 if velocity == 0 && acceleration == 0 {
                     self.rest();
                 } else {
-                    let next = stop::stopping_acceleration(
-                        self.direction * acceleration,
-                        self.direction * velocity,
-                        self.limits,
-                    );
-                    self.jerk = self.direction * next - acceleration;
-                    self.countdown = 1;
+                    self.slow_down();
                 }
             }
             Motion::AbruptPending => {
@@ -454,6 +448,19 @@ impl SCurve {
             }
             Motion::Rest => self.rest(),
         }
+    }
+
+    /// The next cycle of a smooth stop: the jerk that brings the acceleration to the stop's next
+    /// one ([`stop::stopping_acceleration`]), for one step.
+    fn slow_down(&mut self) {
+        let acceleration = self.state.acceleration.to_bits();
+        let next = stop::stopping_acceleration(
+            self.direction * acceleration,
+            self.direction * self.state.velocity.to_bits(),
+            self.limits,
+        );
+        self.jerk = self.direction * next - acceleration;
+        self.countdown = 1;
     }
 
     /// At rest: the next step levels the acceleration off if it is not zero yet.
@@ -520,15 +527,11 @@ impl ProfileGenerator for SCurve {
         self.next_change = SENTINEL;
         match (kind, self.motion) {
             (_, Motion::Rest) | (StopKind::Smooth, Motion::Stopping | Motion::AbruptPending) => {}
+            // Not moved yet (a stop before the first step of a move): at rest already.
+            (StopKind::Smooth, Motion::Planned) if velocity == 0 => self.rest(),
             (StopKind::Smooth, Motion::Planned) => {
                 self.motion = Motion::Stopping;
-                let next = stop::stopping_acceleration(
-                    self.direction * acceleration,
-                    self.direction * velocity,
-                    self.limits,
-                );
-                self.jerk = self.direction * next - acceleration;
-                self.countdown = 1;
+                self.slow_down();
             }
             (StopKind::Abrupt, _) => {
                 self.motion = Motion::AbruptPending;
