@@ -142,7 +142,7 @@ pub struct Trapezoidal {
     /// that was higher (a lowered maximum is reached by decelerating at D).
     last_velocity_bound: i64,
     last_was_abrupt: bool,
-    /// `(velocity, stopping distance)`: the last [`stopping_distance`] computed, which in cruise
+    /// `(velocity, stopping distance)`: the last [`Self::stopping_distance`] computed, which in cruise
     /// is asked for the same velocity every cycle.
     cached_stop: (i64, i128),
 }

@@ -12,7 +12,7 @@
 //! ends of the dips, which the main move's single peak makes enough) and by the exact jerk on the
 //! four cycles of each pair ([`Placement::fits`]). Two pairs of widths `w` and `w + 1` take any
 //! remainder `E` in their range: `w·k₁ + (w + 1)·k₂ = E` is solved by
-//! `k₁ ≡ −E (mod w + 1)` ([`two_pairs`]), because `w ≡ −1` is its own inverse modulo `w + 1`.
+//! `k₁ ≡ −E (mod w + 1)` ([`solve_spans`]), because `w ≡ −1` is its own inverse modulo `w + 1`.
 
 use super::shape::{Bounds, MainMove};
 

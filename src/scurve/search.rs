@@ -265,7 +265,7 @@ fn covered(mix: &Mix, c: u64, notch: u64) -> Option<u64> {
 /// ([`remainder::take`]); if the rest is too small for them, some early units keep their cruise
 /// and the rest grows by their areas until the pairs fit. The plan is then the main move less
 /// the pairs: its distance is the distance, to the raw unit, by construction, and
-/// [`Schedule::with_peaks`] confirms it with the limits.
+/// [`Schedule::find_peaks`] confirms it with the limits.
 fn complete(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule) -> bool {
     let mix = &candidate.mix;
     let notch = candidate.notch;
@@ -352,7 +352,7 @@ fn complete_fine(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule
 }
 
 /// Builds the schedule of `main` less `placement` into `out` and checks it
-/// ([`Schedule::with_peaks`]).
+/// ([`Schedule::find_peaks`]).
 fn finish(
     main: &MainMove,
     placement: &Placement,
