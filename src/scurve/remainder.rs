@@ -8,9 +8,9 @@
 //! covers exactly `w·k` less and leaves the end of the move unchanged.
 //!
 //! Where a pair fits is decided by O(1) inequalities on the main move's [`Bounds`] (the lowered
-//! window where the acceleration is ≥ 0, the raised one where it is ≤ 0, the velocity at the two
-//! ends of the dips, which the main move's single peak makes enough) and by the exact jerk on the
-//! four cycles of each pair ([`Placement::fits`]). Two pairs of widths `w` and `w + 1` take any
+//! window where the acceleration is ≥ 0, the raised one where it is ≤ 0, the velocity at the first
+//! and last cycle of each dip) and by the exact jerk where the main move's jerk leaves no room
+//! ([`Placement::fits`]); the schedule's one pass over the finished plan has the last word. Two pairs of widths `w` and `w + 1` take any
 //! remainder `E` in their range: `w·k₁ + (w + 1)·k₂ = E` is solved by
 //! `k₁ ≡ −E (mod w + 1)` ([`solve_spans`]), because `w ≡ −1` is its own inverse modulo `w + 1`.
 
