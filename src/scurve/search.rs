@@ -240,7 +240,7 @@ fn early_units(mix: &Mix, c: u64, mut over: u64) -> ([u64; 4], u64) {
     let mut early = [0u64; 4];
     for k in 0..4 {
         // A unit can end its cruise early only if it still has a cruise (c − 1 ≥ aₖ + bₖ).
-        if areas[k] > 0 && c > kinds[k].0 + kinds[k].1 {
+        if areas[k] > 0 && mix.counts[k] > 0 && over >= areas[k] && c > kinds[k].0 + kinds[k].1 {
             let units = (over / areas[k]).min(mix.counts[k]);
             early[k] = units;
             over -= units * areas[k];
@@ -339,7 +339,7 @@ fn complete_fine(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule
         over = over.saturating_sub(areas[k]);
     }
     let main = mix.main_move(c, early);
-    let longest = main.bounds().total.saturating_sub(2);
+    let longest = main.total().saturating_sub(2);
     let main = match left {
         0 => main,
         x if x <= longest => main.with_fine_unit(x),
@@ -360,7 +360,7 @@ fn finish(
     move_: &Move,
     out: &mut Schedule,
 ) -> bool {
-    let total = main.bounds().total;
+    let total = main.total();
     let Some(cruise) = total.checked_sub(2 * (a + b)) else {
         return false;
     };

@@ -119,6 +119,11 @@ impl MainMove {
         self.groups().iter().map(f).min().unwrap_or(0)
     }
 
+    /// Cycles of the move: the longest unit's.
+    pub fn total(&self) -> u64 {
+        self.most(|g| g.a + g.b + g.c)
+    }
+
     /// The phase boundaries every unit agrees on: where the move's jerk, acceleration and
     /// velocity have a known sign, whatever the mix. See [`Bounds`].
     pub fn bounds(&self) -> Bounds {
@@ -129,7 +134,7 @@ impl MainMove {
             first_deceleration: self.least(|g| g.c),
             deceleration_jerked: self.most(|g| g.c + g.a),
             first_landing: self.least(|g| g.c + g.b),
-            total: self.most(|g| g.a + g.b + g.c),
+            total: self.total(),
         }
     }
 }
@@ -300,14 +305,19 @@ fn by_shorter_first_ramps(
 /// `(g, v)`: `g = gcd(value, modulus)` and `v·value ≡ g (mod modulus)`, by the extended Euclid
 /// algorithm (the values are ramps, below 2^47).
 fn inverse_mod(value: u64, modulus: u64) -> (u64, u64) {
-    let (mut old_r, mut r) = (value as i64, modulus as i64);
-    let (mut old_s, mut s) = (1i64, 0i64);
+    // The modulus is a first ramp (< 2^24), so the steps fit 32 bits: a hardware division each
+    // on a 32-bit core, where a 64-bit one is a library call.
+    let (Ok(value), Ok(modulus)) = (i32::try_from(value), i32::try_from(modulus)) else {
+        return (modulus, 0); // unreachable for ramps; "no inverse" to the caller
+    };
+    let (mut old_r, mut r) = (value, modulus);
+    let (mut old_s, mut s) = (1i32, 0i32);
     while r != 0 {
         let q = old_r / r;
         (old_r, r) = (r, old_r - q * r);
         (old_s, s) = (s, old_s - q * s);
     }
-    (old_r as u64, old_s.rem_euclid(modulus as i64) as u64)
+    (old_r as u64, old_s.rem_euclid(modulus) as u64)
 }
 
 /// The split nearest `lowering` from above (`under`) or below: as many units of `a` as fit,
@@ -329,6 +339,14 @@ fn nearest(lowering: u64, a: u64, long: u64, short: u64, under: bool) -> Option<
     (y <= short).then_some((x, y))
 }
 
+/// `n mod d`, in 32 bits where both fit (a 64-bit division is a library call on a 32-bit core).
+fn rem(n: u64, d: u64) -> u64 {
+    match (u32::try_from(n), u32::try_from(d)) {
+        (Ok(n), Ok(d)) => u64::from(n % d),
+        _ => n % d,
+    }
+}
+
 /// `a·x + (a − 1)·y = lowering` with `0 ≤ x ≤ long`, `0 ≤ y ≤ short`, the least `y` first; `None`
 /// if there is no such split. `a ≥ 1`.
 fn split(lowering: u64, a: u64, long: u64, short: u64) -> Option<(u64, u64)> {
@@ -337,7 +355,7 @@ fn split(lowering: u64, a: u64, long: u64, short: u64) -> Option<(u64, u64)> {
     }
     // (a − 1)·y ≡ lowering (mod a) ⇔ y ≡ −lowering (mod a); then y = y₀ + a·t and
     // x = x₀ − (a − 1)·t.
-    let y0 = (a - lowering % a) % a;
+    let y0 = (a - rem(lowering, a)) % a;
     let x0 = lowering.checked_sub((a - 1) * y0)? / a;
     // The least t ≥ 0 with x ≤ long.
     let t = x0.saturating_sub(long).div_ceil(a - 1);
