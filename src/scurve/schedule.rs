@@ -305,7 +305,6 @@ impl Schedule {
                 if slope != 0 && (128 - slope.leading_zeros() - cycles.leading_zeros()) > 62 {
                     return None;
                 }
-                velocity += acceleration * cycles as i64;
                 (acceleration, acceleration)
             } else {
                 if jerk.abs() > j_max || cycles > 1 << 30 {
@@ -316,22 +315,19 @@ impl Schedule {
                 if first.abs() > a_max || last.abs() > a_max {
                     return None;
                 }
-                // The velocity after n cycles: v + a·n + j·n(n+1)/2 (n(n+1) is even).
-                let after = |n: i64| {
-                    let ramp = if n % 2 == 0 {
-                        jerk * (n / 2) * (n + 1)
-                    } else {
-                        jerk * n * ((n + 1) / 2)
-                    };
-                    velocity + acceleration * n + ramp
-                };
                 // The velocity turns inside the run only where the acceleration changes sign:
-                // at n* = ⌊−acceleration/jerk − ½⌋ or the cycle after.
+                // at n* = ⌊−acceleration/jerk − ½⌋ or the cycle after, where it is
+                // v + a·n + j·n(n+1)/2 (n(n+1) is even).
                 if first.signum() * last.signum() < 0 {
                     let turn = (-2 * acceleration - jerk).div_euclid(2 * jerk);
                     for n in [turn, turn + 1] {
                         if (1..=m).contains(&n) {
-                            let v = after(n);
+                            let ramp = if n % 2 == 0 {
+                                jerk * (n / 2) * (n + 1)
+                            } else {
+                                jerk * n * ((n + 1) / 2)
+                            };
+                            let v = velocity + acceleration * n + ramp;
                             if !(0..=v_max).contains(&v) {
                                 return None;
                             }
@@ -339,9 +335,13 @@ impl Schedule {
                         }
                     }
                 }
-                velocity = after(m);
                 (first, last)
             };
+            // The accelerations of the run are an arithmetic series: the velocity changes by
+            // m·(first + last)/2 (an integer: m·(2a + j·(m+1)) is even).
+            if first != 0 || last != 0 {
+                velocity += (first + last) * cycles as i64 / 2;
+            }
             // The velocity is monotone on the run otherwise: its start was the last run's end.
             if !(0..=v_max).contains(&velocity) {
                 return None;
