@@ -568,23 +568,22 @@ def main() -> int:
         return 2
     print(f"== {time.monotonic() - started:.1f} s in all")
 
-    status = 0
-    if args.plan_budget is not None:
-        if counts[-1] > args.plan_budget:
-            over = sum(1 for n in counts if n > args.plan_budget)
-            print(f"FAIL: planning executes up to {counts[-1]} instructions (move {worst[0]}), over the budget "
-                  f"of {args.plan_budget} (SPEC §16) in {over} of {len(counts)} moves", file=sys.stderr)
-            status = 1
-        else:
-            print(f"ok: planning within {args.plan_budget} instructions (worst {counts[-1]})")
-    if args.step_budget is not None:
-        if max(all_steps) > args.step_budget:
-            over = sum(1 for n in all_steps if n > args.step_budget)
-            print(f"FAIL: one step executes up to {max(all_steps)} instructions, over the budget of "
-                  f"{args.step_budget} (SPEC §16) on {over} of {len(all_steps)} cycles", file=sys.stderr)
-            status = 1
-        else:
-            print(f"ok: one step within {args.step_budget} instructions (worst {max(all_steps)})")
+    def within(what: str, values: list[int], budget: int | None, where: str, unit: str) -> bool:
+        """Prints whether the largest of `values` is within `budget` (no budget: nothing to say)."""
+        if budget is None:
+            return True
+        worst_value = max(values)
+        if worst_value > budget:
+            over = sum(1 for n in values if n > budget)
+            print(f"FAIL: {what} executes up to {worst_value} instructions{where}, over the budget of "
+                  f"{budget} (SPEC §16) in {over} of {len(values)} {unit}", file=sys.stderr)
+            return False
+        print(f"ok: {what} within {budget} instructions (worst {worst_value})")
+        return True
+
+    planning_ok = within("planning", counts, args.plan_budget, f" (move {worst[0]})", "moves")
+    stepping_ok = within("one step", all_steps, args.step_budget, "", "cycles")
+    status = 0 if planning_ok and stepping_ok else 1
     return status
 
 
