@@ -272,6 +272,7 @@ fn complete(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule) -> 
     let Some(over) = covered(mix, c, notch).and_then(|d| d.checked_sub(move_.distance)) else {
         return false;
     };
+    let jerk = move_.limits.jerk;
     let areas = mix.areas();
     let (mut early, over) = early_units(mix, c, over);
     // Units given back (cruise restored) when the rest is too small for notch pairs: of the
@@ -286,11 +287,10 @@ fn complete(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule) -> 
             return false;
         };
         placement = placement.with(velocity_notch);
-        if !placement.fits(0, &main, &bounds, move_.limits.jerk) {
+        if !placement.fits(0, &main, &bounds, jerk) {
             return false;
         }
     }
-    let jerk = move_.limits.jerk;
     let Some((placement, given)) =
         remainder::take(over, &main, &bounds, placement, jerk, (area, available))
     else {
@@ -319,14 +319,13 @@ fn complete_fine(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule
     let Some(over) = covered(mix, c, 0).and_then(|d| d.checked_sub(move_.distance)) else {
         return false;
     };
-    let (mut early, over) = early_units(mix, c, over);
+    let (mut early, mut over) = early_units(mix, c, over);
     // Fine units add distance: one more early unit than fits (of the smallest kind that has
     // one to spare), and the fine units make up the difference — two more if that difference
     // is 1 (a fine unit of one cycle would jerk by 2).
     let mut left = 0;
     let kinds = mix.kinds();
     let areas = mix.areas();
-    let mut over = over;
     while over > 0 || left == 1 {
         let Some(k) = (0..4)
             .rev()
