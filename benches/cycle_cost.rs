@@ -75,7 +75,11 @@ fn setup_cost(c: &mut Criterion) {
     let mut group = c.benchmark_group("set up a move");
     let scurve = common::scurve_parameters();
     group.bench_function("scurve/plan", |b| {
-        b.iter(|| profilegen::SCurve::new(black_box(scurve)).unwrap().plan())
+        b.iter(|| {
+            profilegen::SCurve::new(black_box(scurve))
+                .unwrap()
+                .duration()
+        })
     });
     let trapezoid = common::trapezoidal_parameters();
     group.bench_function("trapezoidal/validate", |b| {

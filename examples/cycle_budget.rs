@@ -163,7 +163,7 @@ fn main() {
     let scurve = common::scurve_parameters();
     println!(
         "| profilegen SCurve::new (plan) | {:.0} |",
-        per_call(|| profilegen::SCurve::new(scurve).unwrap().plan())
+        per_call(|| profilegen::SCurve::new(scurve).unwrap().duration())
     );
     let trapezoid = common::trapezoidal_parameters();
     println!(

@@ -52,9 +52,9 @@ fn plan(destination: i32, velocity: u32, acceleration: u32, jerk: u32) -> u64 {
     match parameters(destination, velocity, acceleration, jerk).and_then(SCurve::new) {
         Ok(axis) => {
             // The whole generator is the result, not only the total: without this the optimizer
-            // could drop the parts of planning that `plan().total` does not depend on.
-            let axis = black_box(axis);
-            axis.plan().total
+            // could drop the parts of planning that `duration()` does not depend on.
+            let axis = black_box(&axis);
+            axis.duration()
         }
         Err(_) => REFUSED,
     }
@@ -115,7 +115,7 @@ pub extern "C" fn probe_step_setup(
 ) -> u64 {
     match parameters(destination, velocity, acceleration, jerk).and_then(SCurve::new) {
         Ok(axis) => {
-            let total = axis.plan().total;
+            let total = axis.duration();
             // SAFETY: single-threaded; no reference to the slot outlives a call.
             unsafe { (*AXIS.0.get()).write(axis) };
             total

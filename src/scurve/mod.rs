@@ -110,6 +110,9 @@ enum Motion {
 /// # Ok::<(), profilegen::Error>(())
 /// ```
 #[derive(Debug, Clone)]
+// In declaration order, the state first: a step's hot fields then sit at the start of the
+// generator, where a Cortex-M4 stores the state with one `stm` from the generator's address.
+#[repr(C)]
 pub struct SCurve {
     /// The state after the last step: its acceleration and velocity are the integrators.
     state: State,
@@ -243,8 +246,22 @@ impl SCurve {
     }
 
     /// The plan of the present move (all zero when at rest with nothing to do).
+    ///
+    /// Its peaks are found when asked for, by one pass over the plan's few dozen jerk changes
+    /// (planning itself does not need them); [`Self::duration`] is the length alone, for nothing.
     pub fn plan(&self) -> ScurvePlan {
-        self.schedule.plan
+        // The peaks are found when asked for, off the planning path: one pass over the replay.
+        let replay = self.schedule.replay(self.direction, self.limits);
+        ScurvePlan {
+            peak_acceleration: replay.peak_acceleration,
+            peak_velocity: replay.peak_velocity,
+            ..self.schedule.plan
+        }
+    }
+
+    /// The present move's length in cycles (`plan().total`, without finding the peaks).
+    pub fn duration(&self) -> u64 {
+        self.schedule.plan.total
     }
 
     /// The parameters in force (after a stop the maximum velocity reads zero).
@@ -385,8 +402,8 @@ impl SCurve {
         self.motion = Motion::Planned;
         // The first change is on cycle 0: it is the first step's jerk.
         let first = self.schedule.change(0);
-        self.jerk = first.amount;
-        self.countdown = first.cycle;
+        self.jerk = first.jerk;
+        self.countdown = first.hold;
         self.next_change = 1;
         // Right after an abrupt stop the last acceleration is the drop: the first step of the
         // move starts from zero, so its jerk is corrected for that one cycle, and the slow path
@@ -402,7 +419,7 @@ impl SCurve {
 
     /// Whether the planned move has replayed its end marker.
     fn arrived(&self) -> bool {
-        self.motion == Motion::Planned && self.next_change == self.schedule.changes().len()
+        self.motion == Motion::Planned && self.next_change == self.schedule.len()
     }
 
     /// The slow path of [`ProfileGenerator::step`]: the event that the countdown reached.
@@ -420,14 +437,14 @@ impl SCurve {
                 // correction is taken back, and the replay goes on from the second cycle.
                 self.offset = 0;
                 let first = self.schedule.change(0);
-                self.jerk = first.amount;
-                if first.cycle > 1 {
-                    self.countdown = first.cycle - 1;
+                self.jerk = first.jerk;
+                if first.hold > 1 {
+                    self.countdown = first.hold - 1;
                     self.next_change = 1;
                 } else {
                     let second = self.schedule.change(1);
-                    self.jerk = second.amount;
-                    self.countdown = second.cycle;
+                    self.jerk = second.jerk;
+                    self.countdown = second.hold;
                     self.next_change = 2;
                 }
             }
@@ -494,9 +511,9 @@ impl ProfileGenerator for SCurve {
             // sentinel, which holds no cycle, sends the event to the slow path.
             let next = self.next_change;
             let change = self.schedule.change(next);
-            if change.cycle != 0 {
-                self.jerk = change.amount;
-                self.countdown = change.cycle;
+            if change.hold != 0 {
+                self.jerk = change.jerk;
+                self.countdown = change.hold;
                 self.next_change = next + 1;
             } else {
                 self.event();
@@ -575,10 +592,10 @@ mod tests {
         let total = i128::from(schedule.plan.total);
         let (mut position, mut velocity, mut acceleration, mut steepest) = (0i128, 0, 0, 0);
         let mut cycle = 0i128;
-        for change in schedule.changes() {
-            let jerk = i128::from(change.amount);
+        for (hold, jerk) in schedule.runs() {
+            let jerk = i128::from(jerk);
             steepest = steepest.max(jerk.abs());
-            let m = i128::from(change.cycle).min(total - cycle);
+            let m = i128::from(hold).min(total - cycle);
             // m cycles of constant jerk: Σ velocity = m·v + a·m(m+1)/2 + j·m(m+1)(m+2)/6.
             position += m * velocity + acceleration * (m * (m + 1) / 2);
             if jerk != 0 {
@@ -632,10 +649,7 @@ mod tests {
             prop_assert_eq!(position, i128::from(distance), "{:?}", axis.plan());
             prop_assert_eq!((velocity, acceleration), (0, 0));
             prop_assert!(steepest <= i128::from(jerk));
-            let holds: u64 = axis.schedule.changes()[..axis.schedule.changes().len() - 1]
-                .iter()
-                .map(|c| c.cycle)
-                .sum();
+            let holds: u64 = axis.schedule.runs().map(|(hold, _)| hold).sum();
             prop_assert_eq!(holds, axis.plan().total, "the replay takes exactly the plan's cycles");
         }
     }

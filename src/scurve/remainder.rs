@@ -10,7 +10,7 @@
 //! Where a pair fits is decided by O(1) inequalities on the main move's [`Bounds`] (the lowered
 //! window where the acceleration is ≥ 0, the raised one where it is ≤ 0, the velocity at the first
 //! and last cycle of each dip) and by the exact jerk where the main move's jerk leaves no room
-//! ([`Placement::fits`]); the schedule's one pass over the finished plan has the last word. Two pairs of widths `w` and `w + 1` take any
+//! ([`Placement::fits`]). Two pairs of widths `w` and `w + 1` take any
 //! remainder `E` in their range: `w·k₁ + (w + 1)·k₂ = E` is solved by
 //! `k₁ ≡ −E (mod w + 1)` ([`solve_spans`]), because `w ≡ −1` is its own inverse modulo `w + 1`.
 
@@ -123,8 +123,8 @@ impl Placement {
         });
         // The dips: at the first and last cycle of each, the main move's velocity covers them
         // all. Inside, the main move's velocity rises (falls) faster than the dips deepen, on
-        // every cycle where the acceleration is at least their number; the schedule's one pass
-        // ([`super::schedule::Schedule::find_peaks`]) has the last word.
+        // every cycle where the acceleration is at least their number (the tests replay every
+        // plan they make and check it: [`super::schedule::Schedule::replay`]).
         let covered = |n: u64| {
             let depth: u64 = notches.iter().map(|notch| notch.depth_at(n)).sum();
             main.velocity_at(n) >= depth

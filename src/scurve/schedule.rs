@@ -5,18 +5,14 @@ use super::remainder::{Placement, MAX_NOTCHES};
 use super::shape::MainMove;
 use super::ScurvePlan;
 
-/// A jerk change (2^-32 counts/cycle³, the direction of the move folded in).
-///
-/// While the schedule is built and checked, `cycle` is the cycle whose acceleration is the first
-/// to see the change (0 = the first step) and `amount` the change. Once it is sealed
-/// ([`Schedule::seal`]), it is what a replay needs and nothing more: `cycle` is the number of
-/// cycles the change holds (to the next one) and `amount` the jerk it sets.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+/// One change of the sealed replay: the jerk it sets (2^-32 counts/cycle³, the direction of the
+/// move folded in) and the cycles it holds, to the next change.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) struct JerkChange {
-    /// The cycle of the change; sealed: the cycles it holds.
-    pub cycle: u64,
-    /// The change of the jerk, raw units; sealed: the jerk from this change on.
-    pub amount: i64,
+    /// The cycles the change holds; the end marker's: for ever (`u64::MAX`).
+    pub hold: u64,
+    /// The jerk from this change on, raw units.
+    pub jerk: i64,
 }
 
 /// At most this many jerk changes (after changes on the same cycle are added up): the main move's
@@ -42,24 +38,46 @@ pub(super) struct Limits64 {
     pub velocity: u64,
 }
 
-/// A plan in force: its sorted jerk changes (one per cycle, changes on the same cycle added up),
-/// closed by an end marker on the cycle after the last (which brings the jerk back to zero),
-/// and its summary.
+/// What a replay of a sealed schedule does, run by run ([`Schedule::replay`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub(super) struct Replay {
+    /// The largest |acceleration| on any cycle, I32F32 bits.
+    pub peak_acceleration: i64,
+    /// The largest velocity along the direction of the move, I32F32 bits.
+    pub peak_velocity: i64,
+    /// Every cycle keeps |jerk| ≤ J, |acceleration| ≤ A and 0 ≤ velocity ≤ V along the
+    /// direction, and the move ends at rest.
+    pub within_limits: bool,
+    /// The distance covered along the direction, 2^-32 counts (valid when `within_limits`).
+    pub distance: i128,
+}
+
+/// A plan in force: its jerk changes in the order they come (one per cycle, changes on the same
+/// cycle added up), closed by an end marker on the cycle after the last (which brings the jerk
+/// back to zero), and its summary.
+///
+/// Two arrays rather than one of pairs: a jerk is at most J < 2^31 raw units, so 32 bits hold it,
+/// and the generator — which carries the schedule, and is copied when it is returned — is a
+/// quarter smaller (a copy costs about an instruction per byte on a Cortex-M4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) struct Schedule {
-    changes: [JerkChange; MAX_CHANGES],
+    /// While building: the cycle of each change (0 = the first step). Sealed: the cycles it
+    /// holds.
+    holds: [u64; MAX_CHANGES],
+    /// While building: the change of the jerk, modulo 2^32 (a change is at most 2J < 2^32, so
+    /// it is zero exactly when its residue is, and the running sum of the residues is the jerk,
+    /// which fits 32 bits). Sealed: the jerk it sets.
+    jerks: [i32; MAX_CHANGES],
     len: usize,
-    /// The plan's summary.
+    /// The plan's summary (its peaks zero: [`Self::replay`] finds them when they are asked for).
     pub plan: ScurvePlan,
 }
 
 impl Schedule {
     /// No move.
     pub const EMPTY: Self = Self {
-        changes: [JerkChange {
-            cycle: 0,
-            amount: 0,
-        }; MAX_CHANGES],
+        holds: [0; MAX_CHANGES],
+        jerks: [0; MAX_CHANGES],
         len: 0,
         plan: ScurvePlan {
             phases: [0; 7],
@@ -69,10 +87,19 @@ impl Schedule {
         },
     };
 
-    /// The change at `index` modulo [`MAX_CHANGES`] (no bounds check on the replay's path).
+    /// The sealed change at `index` modulo [`MAX_CHANGES`] (no bounds check on the replay's
+    /// path).
     #[inline]
     pub fn change(&self, index: usize) -> JerkChange {
-        self.changes[index % MAX_CHANGES]
+        JerkChange {
+            hold: self.holds[index % MAX_CHANGES],
+            jerk: i64::from(self.jerks[index % MAX_CHANGES]),
+        }
+    }
+
+    /// How many changes the sealed replay has, its end marker included.
+    pub fn len(&self) -> usize {
+        self.len
     }
 
     /// No move.
@@ -90,64 +117,48 @@ impl Schedule {
         self.plan = ScurvePlan {
             phases: [1, 0, 1, 0, 0, 0, 1],
             total: 3,
-            peak_acceleration: 1,
-            peak_velocity: 1,
+            peak_acceleration: 0,
+            peak_velocity: 0,
         };
         self.seal();
     }
 
-    /// The changes, sorted by cycle, at most one per cycle (once sealed: with the end marker, each
-    /// holding the cycles to the next).
-    pub fn changes(&self) -> &[JerkChange] {
-        &self.changes[..self.len]
+    /// The runs of the sealed replay, `(cycles, jerk)` in order, the end marker left out.
+    pub fn runs(&self) -> impl Iterator<Item = (u64, i64)> + '_ {
+        let runs = self.len.saturating_sub(1);
+        self.holds[..runs]
+            .iter()
+            .zip(&self.jerks[..runs])
+            .map(|(&hold, &jerk)| (hold, i64::from(jerk)))
     }
 
     /// Adds `amount` on `cycle`, keeping the list sorted: from the end back to its place (the
     /// group corners arrive slot by slot, nearly in order, so this is a step or two each), added
     /// to a change on the same cycle.
     fn add(&mut self, cycle: u64, amount: i64) {
-        // Nearly always on the last cycle, or after it.
-        if let Some(last) = self
-            .len
-            .checked_sub(1)
-            .map(|i| &mut self.changes[i % MAX_CHANGES])
-        {
-            if last.cycle == cycle {
-                last.amount += amount;
-                return;
-            }
-        }
+        // Modulo 2^32 (see `jerks`): the truncation is the residue.
+        let amount = amount as i32;
         let mut at = self.len.min(SENTINEL - 1);
-        while at > 0 && self.changes[at - 1].cycle > cycle {
+        while at > 0 && self.holds[at - 1] > cycle {
             at -= 1;
         }
-        if at > 0 && self.changes[at - 1].cycle == cycle {
-            self.changes[at - 1].amount += amount;
+        if at > 0 && self.holds[at - 1] == cycle {
+            self.jerks[at - 1] = self.jerks[at - 1].wrapping_add(amount);
             return;
         }
         if self.len + 1 >= SENTINEL {
             return; // Unreachable: MAX_CHANGES covers every group and pair, and the marker.
         }
-        let mut k = self.len;
-        while k > at {
-            self.changes[k] = self.changes[k - 1];
-            k -= 1;
-        }
-        self.changes[at] = JerkChange { cycle, amount };
+        let len = self.len;
+        self.holds.copy_within(at..len, at + 1);
+        self.jerks.copy_within(at..len, at + 1);
+        self.holds[at] = cycle;
+        self.jerks[at] = amount;
         self.len += 1;
     }
 
-    /// Inserts `change` before every other.
-    fn add_first(&mut self, change: JerkChange) {
-        let len = self.len.min(MAX_CHANGES - 2);
-        self.changes.copy_within(..len, 1);
-        self.changes[0] = change;
-        self.len = len + 1;
-    }
-
     /// Makes this the schedule of `main` less the notch pairs of `placement`, in the direction
-    /// `direction` (±1), with `plan` as its summary (its peaks filled in by
-    /// [`Self::find_peaks`]).
+    /// `direction` (±1), with `plan` as its summary, and seals it ([`Self::seal`]).
     pub fn build(
         &mut self,
         main: &MainMove,
@@ -172,25 +183,27 @@ impl Schedule {
                     6 => (c + b, 1),
                     _ => (c + a + b, -1),
                 };
-                self.add(cycle, sign * direction * group.count as i64);
+                let count = group.count as i64;
+                self.add(cycle, if sign == direction { count } else { -count });
             }
         }
         // A jerk of ±1 on one cycle is a change by ±1 on it and back on the next. The pairs'
         // changes, sorted apart (at most 24), are merged in from the end in one pass.
-        let mut notches = [JerkChange::default(); 8 * MAX_NOTCHES];
+        let mut cycles = [0u64; 8 * MAX_NOTCHES];
+        let mut amounts = [0i32; 8 * MAX_NOTCHES];
         let mut count = 0;
         for notch in placement.notches() {
             for (cycle, amount) in notch.impulses() {
+                let amount = (amount * direction) as i32;
                 for (cycle, amount) in [(cycle, amount), (cycle + 1, -amount)] {
                     let mut k = count;
-                    while k > 0 && notches[k - 1].cycle > cycle {
-                        notches[k] = notches[k - 1];
+                    while k > 0 && cycles[k - 1] > cycle {
+                        cycles[k] = cycles[k - 1];
+                        amounts[k] = amounts[k - 1];
                         k -= 1;
                     }
-                    notches[k] = JerkChange {
-                        cycle,
-                        amount: amount * direction,
-                    };
+                    cycles[k] = cycle;
+                    amounts[k] = amount;
                     count += 1;
                 }
             }
@@ -198,188 +211,127 @@ impl Schedule {
         let (mut i, mut k) = (self.len, count);
         let mut write = (self.len + count).min(MAX_CHANGES - 1);
         self.len = write;
-        while k > 0 {
+        while k > 0 && write > 0 {
             write -= 1;
-            if i > 0 && self.changes[i - 1].cycle > notches[k - 1].cycle {
-                self.changes[write] = self.changes[i - 1];
+            if i > 0 && self.holds[i - 1] > cycles[k - 1] {
+                self.holds[write] = self.holds[i - 1];
+                self.jerks[write] = self.jerks[i - 1];
                 i -= 1;
             } else {
-                self.changes[write] = notches[k - 1];
+                self.holds[write] = cycles[k - 1];
+                self.jerks[write] = amounts[k - 1];
                 k -= 1;
             }
         }
         // Changes on the same cycle are added up; changes on or after the last cycle never act,
-        // and changes that cancel out would cost a cycle's slow path for nothing.
+        // and changes that cancel out would cost a cycle's slow path for nothing. A replay
+        // starts with the change on cycle 0: one of nothing if the changes there cancelled out.
         let total = plan.total;
         let mut kept = 0;
         for i in 0..self.len {
-            let change = self.changes[i];
-            if change.cycle >= total {
+            let (cycle, amount) = (self.holds[i], self.jerks[i]);
+            if cycle >= total {
                 break;
             }
-            if kept > 0 && self.changes[kept - 1].cycle == change.cycle {
-                self.changes[kept - 1].amount += change.amount;
+            if kept > 0 && self.holds[kept - 1] == cycle {
+                self.jerks[kept - 1] = self.jerks[kept - 1].wrapping_add(amount);
             } else {
-                if kept > 0 && self.changes[kept - 1].amount == 0 {
+                if kept > 0 && self.jerks[kept - 1] == 0 && self.holds[kept - 1] > 0 {
                     kept -= 1;
                 }
-                self.changes[kept] = change;
+                self.holds[kept] = cycle;
+                self.jerks[kept] = amount;
                 kept += 1;
             }
         }
-        if kept > 0 && self.changes[kept - 1].amount == 0 {
+        if kept > 0 && self.jerks[kept - 1] == 0 && self.holds[kept - 1] > 0 {
             kept -= 1;
         }
+        // A replay starts with the change on cycle 0: one of nothing if there is none.
+        if kept == 0 || self.holds[0] > 0 {
+            kept = kept.min(SENTINEL - 2);
+            self.holds.copy_within(..kept, 1);
+            self.jerks.copy_within(..kept, 1);
+            self.holds[0] = 0;
+            self.jerks[0] = 0;
+            kept += 1;
+        }
         self.len = kept;
+        self.seal();
     }
 
-    /// Makes the checked schedule a replay: appends the end marker (on cycle `total`, setting the
+    /// Makes the built schedule a replay: appends the end marker (on cycle `total`, setting the
     /// jerk to zero; the acceleration and velocity are zero there already), and turns each change
     /// into the jerk it sets and the cycles it holds (the marker's: for ever).
-    pub fn seal(&mut self) {
-        // A replay starts with the change on cycle 0: one of nothing if the changes there
-        // cancelled out.
-        if self.changes().first().is_none_or(|c| c.cycle > 0) {
-            self.add_first(JerkChange::default());
-        }
+    fn seal(&mut self) {
         let end = self.len.min(SENTINEL - 1);
-        self.changes[end] = JerkChange {
-            cycle: self.plan.total,
-            amount: 0,
-        };
+        self.holds[end] = self.plan.total;
+        self.jerks[end] = 0;
         self.len = end + 1;
-        let mut jerk = 0;
+        let mut jerk = 0i32;
         for i in 0..end {
-            jerk += self.changes[i].amount;
-            self.changes[i] = JerkChange {
-                cycle: self.changes[i + 1].cycle - self.changes[i].cycle,
-                amount: jerk,
-            };
+            // The running sum modulo 2^32 is the jerk (see `jerks`).
+            jerk = jerk.wrapping_add(self.jerks[i]);
+            self.jerks[i] = jerk;
+            self.holds[i] = self.holds[i + 1] - self.holds[i];
         }
-        self.changes[end].cycle = u64::MAX;
+        self.holds[end] = u64::MAX;
     }
 
-    /// Fills in the plan's peaks and returns `true` if every cycle keeps |jerk| ≤ J,
-    /// |acceleration| ≤ A and 0 ≤ velocity ≤ V (along the direction), and the move covers
-    /// exactly `distance` and ends at rest; `false` otherwise.
+    /// Replays the sealed schedule run by run, in the move's direction (`direction` ±1): its
+    /// peaks, whether it keeps `limits` on every cycle and ends at rest, and the distance it
+    /// covers.
     ///
-    /// One pass over the runs of constant jerk: on a run the acceleration is linear and the
-    /// velocity quadratic, so the ends of the run and the velocity's turning point are the only
-    /// cycles that can set a peak or break a limit. The planner's inequalities already keep the
-    /// limits; this pass gives the exact peaks the plan reports, and is the last word on a plan.
-    pub fn find_peaks(&mut self, distance: u64, direction: i64, limits: Limits64) -> bool {
-        self.scan(distance, direction, limits).is_some()
-    }
-
-    fn scan(&mut self, distance: u64, direction: i64, limits: Limits64) -> Option<()> {
-        let total = self.plan.total;
+    /// On a run of constant jerk the acceleration is linear and the velocity quadratic, so the
+    /// ends of the run and the velocity's turning point are the only cycles that can set a peak
+    /// or break a limit. Planning does not run this: the planner's inequalities keep the limits
+    /// where the remainder sits, and in builds with debug assertions (the tests) every plan is
+    /// checked with it. [`super::SCurve::plan`] runs it for the peaks, when they are asked for.
+    pub fn replay(&self, direction: i64, limits: Limits64) -> Replay {
         let (j_max, a_max, v_max) = (
-            limits.jerk as i64,
-            limits.acceleration as i64,
-            limits.velocity as i64,
+            limits.jerk as i128,
+            limits.acceleration as i128,
+            limits.velocity as i128,
         );
-        let (mut jerk, mut acceleration, mut velocity) = (0i64, 0i64, 0i64);
-        let (mut peak_acceleration, mut peak_velocity) = (0i64, 0i64);
-        #[cfg(debug_assertions)]
-        let mut covered = 0i128;
-        let changes = self.changes();
-        // Before the first change (if it is not on cycle 0) nothing moves.
-        for (i, change) in changes.iter().enumerate() {
-            if change.cycle >= total {
-                break;
+        let (mut acceleration, mut velocity, mut distance) = (0i128, 0i128, 0i128);
+        let (mut peak_acceleration, mut peak_velocity) = (0i128, 0i128);
+        let mut within_limits = true;
+        for (cycles, jerk) in self.runs() {
+            let (m, jerk) = (i128::from(cycles), i128::from(jerk * direction));
+            within_limits &= jerk.abs() <= j_max;
+            // Σ_{n=1..m} (v + a·n + j·n(n+1)/2) = m·v + a·m(m+1)/2 + j·m(m+1)(m+2)/6. Only
+            // runs without a jerk are long (with one, j·m ≤ 2A bounds m by 2^32), so every
+            // product stays under 2^127.
+            distance += m * velocity + acceleration * (m * (m + 1) / 2);
+            if jerk != 0 {
+                distance += jerk * (m * (m + 1) * (m + 2) / 6);
             }
-            jerk += if direction < 0 {
-                -change.amount
-            } else {
-                change.amount
-            };
-            let end = changes.get(i + 1).map_or(total, |c| c.cycle.min(total));
-            let cycles = end - change.cycle;
-            #[cfg(debug_assertions)]
-            let start = (velocity, acceleration);
-            // Within the limits every product below stays under 2^62: a run with a jerk is at
-            // most 2^30 cycles (its acceleration changes by j·m ≤ 2A < 2^33), one with only an
-            // acceleration moves the velocity by a·m, checked by the widths of a and m.
-            let (first, last) = if jerk == 0 {
-                let slope = acceleration.unsigned_abs();
-                if slope != 0 && (128 - slope.leading_zeros() - cycles.leading_zeros()) > 62 {
-                    return None;
-                }
-                (acceleration, acceleration)
-            } else {
-                if jerk.abs() > j_max || cycles > 1 << 30 {
-                    return None;
-                }
-                let m = cycles as i64;
-                let (first, last) = (acceleration + jerk, acceleration + jerk * m);
-                if first.abs() > a_max || last.abs() > a_max {
-                    return None;
-                }
-                // The velocity turns inside the run only where the acceleration changes sign:
-                // at n* = ⌊−acceleration/jerk − ½⌋ or the cycle after, where it is
-                // v + a·n + j·n(n+1)/2 (n(n+1) is even).
-                if first.signum() * last.signum() < 0 {
-                    let turn = (-2 * acceleration - jerk).div_euclid(2 * jerk);
-                    for n in [turn, turn + 1] {
-                        if (1..=m).contains(&n) {
-                            let ramp = if n % 2 == 0 {
-                                jerk * (n / 2) * (n + 1)
-                            } else {
-                                jerk * n * ((n + 1) / 2)
-                            };
-                            let v = velocity + acceleration * n + ramp;
-                            if !(0..=v_max).contains(&v) {
-                                return None;
-                            }
-                            peak_velocity = peak_velocity.max(v);
-                        }
+            let (first, last) = (acceleration + jerk, acceleration + jerk * m);
+            peak_acceleration = peak_acceleration.max(first.abs()).max(last.abs());
+            // The velocity turns inside the run only where the acceleration changes sign: at
+            // n* = ⌊−a/j − ½⌋ or the cycle after, where it is v + a·n + j·n(n+1)/2.
+            if first.signum() * last.signum() < 0 {
+                let turn = (-2 * acceleration - jerk).div_euclid(2 * jerk);
+                for n in [turn, turn + 1] {
+                    if (1..=m).contains(&n) {
+                        let v = velocity + acceleration * n + jerk * (n * (n + 1) / 2);
+                        within_limits &= (0..=v_max).contains(&v);
+                        peak_velocity = peak_velocity.max(v);
                     }
                 }
-                (first, last)
-            };
-            // The accelerations of the run are an arithmetic series: the velocity changes by
-            // m·(first + last)/2 (an integer: m·(2a + j·(m+1)) is even).
-            if first != 0 || last != 0 {
-                velocity += (first + last) * cycles as i64 / 2;
             }
-            // The velocity is monotone on the run otherwise: its start was the last run's end.
-            if !(0..=v_max).contains(&velocity) {
-                return None;
-            }
-            peak_velocity = peak_velocity.max(velocity);
-            peak_acceleration = peak_acceleration.max(first.abs()).max(last.abs());
+            velocity += acceleration * m + jerk * (m * (m + 1) / 2);
             acceleration = last;
-            #[cfg(debug_assertions)]
-            {
-                covered += run_distance(start.0, start.1, jerk, cycles);
-            }
+            within_limits &= (0..=v_max).contains(&velocity);
+            peak_velocity = peak_velocity.max(velocity);
         }
-        if acceleration != 0 || velocity != 0 || peak_acceleration > a_max {
-            return None;
+        within_limits &= acceleration == 0 && velocity == 0 && peak_acceleration <= a_max;
+        Replay {
+            // Within the limits both fit 64 bits (|a| ≤ A < 2^31, v ≤ V < 2^47).
+            peak_acceleration: i64::try_from(peak_acceleration).unwrap_or(i64::MAX),
+            peak_velocity: i64::try_from(peak_velocity).unwrap_or(i64::MAX),
+            within_limits,
+            distance,
         }
-        #[cfg(debug_assertions)]
-        if covered != i128::from(distance) {
-            return None;
-        }
-        #[cfg(not(debug_assertions))]
-        let _ = distance;
-        self.plan.peak_acceleration = peak_acceleration;
-        self.plan.peak_velocity = peak_velocity;
-        Some(())
     }
-}
-
-/// `Σ_{n=1..m} (v + a·n + j·n(n+1)/2) = m·v + a·m(m+1)/2 + j·m(m+1)(m+2)/6`: the distance a run of
-/// `m` cycles of constant jerk covers (with `a` and `j` non-zero only on runs shorter than 2^30
-/// cycles, as in every plan within the limits).
-#[cfg(debug_assertions)]
-fn run_distance(velocity: i64, acceleration: i64, jerk: i64, m: u64) -> i128 {
-    let m = i128::from(m);
-    i128::from(velocity) * m
-        + i128::from(acceleration) * (m * (m + 1) / 2)
-        + if jerk == 0 {
-            0
-        } else {
-            i128::from(jerk) * (m * (m + 1) * (m + 2) / 6)
-        }
 }

@@ -264,8 +264,8 @@ fn covered(mix: &Mix, c: u64, notch: u64) -> Option<u64> {
 /// first, take all but a rest smaller than the smallest area. Notch pairs take that rest exactly
 /// ([`remainder::take`]); if the rest is too small for them, some early units keep their cruise
 /// and the rest grows by their areas until the pairs fit. The plan is then the main move less
-/// the pairs: its distance is the distance, to the raw unit, by construction, and
-/// [`Schedule::find_peaks`] confirms it with the limits.
+/// the pairs: its distance is the distance, to the raw unit, by construction (in builds with
+/// debug assertions [`Schedule::replay`] confirms it, with the limits).
 fn complete(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule) -> bool {
     let mix = &candidate.mix;
     let notch = candidate.notch;
@@ -350,8 +350,8 @@ fn complete_fine(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule
     finish(&main, &Placement::default(), (mix.a, mix.b), move_, out)
 }
 
-/// Builds the schedule of `main` less `placement` into `out` and checks it
-/// ([`Schedule::find_peaks`]).
+/// Builds the schedule of `main` less `placement` into `out`, sealed (`false` if its phases do
+/// not add up).
 fn finish(
     main: &MainMove,
     placement: &Placement,
@@ -370,11 +370,17 @@ fn finish(
         peak_velocity: 0,
     };
     out.build(main, placement, move_.direction, plan);
-    let checked = out.find_peaks(move_.distance, move_.direction, move_.limits);
-    if checked {
-        out.seal();
-    }
-    checked
+    // The planner's inequalities keep the limits and its arithmetic the distance; the tests run
+    // with debug assertions, so every plan they make is replayed and checked here.
+    debug_assert!(
+        {
+            let replay = out.replay(move_.direction, move_.limits);
+            replay.within_limits && replay.distance == i128::from(move_.distance)
+        },
+        "a plan that breaks a limit or misses the distance: {:?}",
+        (main, placement, move_)
+    );
+    true
 }
 
 /// The plan with ramps of one cycle: `tb(1, 1, c)` units, as many as the jerk, the
