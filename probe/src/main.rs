@@ -49,12 +49,13 @@ fn parameters(
 }
 
 fn plan(destination: i32, velocity: u32, acceleration: u32, jerk: u32) -> u64 {
-    match parameters(destination, velocity, acceleration, jerk).and_then(SCurve::new) {
+    // The result is looked at where `SCurve::new` returned it, as a caller keeping it would:
+    // moving it out of the `Result` would copy the whole generator, which is not planning.
+    match &parameters(destination, velocity, acceleration, jerk).and_then(SCurve::new) {
         Ok(axis) => {
             // The whole generator is the result, not only the total: without this the optimizer
             // could drop the parts of planning that `duration()` does not depend on.
-            let axis = black_box(&axis);
-            axis.duration()
+            black_box(axis).duration()
         }
         Err(_) => REFUSED,
     }

@@ -34,6 +34,7 @@
 //! instructions median, 36,969 at worst over 1,000 random moves. A step is at most 40 Cortex-M4
 //! instructions.
 
+mod division;
 mod remainder;
 mod schedule;
 mod search;

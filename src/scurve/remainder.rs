@@ -14,6 +14,7 @@
 //! remainder `E` in their range: `w·k₁ + (w + 1)·k₂ = E` is solved by
 //! `k₁ ≡ −E (mod w + 1)` ([`solve_spans`]), because `w ≡ −1` is its own inverse modulo `w + 1`.
 
+use super::division::{ceil_div, div, div_ceil, floor_div, rem};
 use super::shape::{Bounds, MainMove};
 
 /// One notch pair: see the module docs.
@@ -211,27 +212,13 @@ fn place(first: Interval, second: Interval, width: u64, span: u64) -> Option<Not
     })
 }
 
-/// `⌊n / d⌋` for signed `n` and `d > 0`, in 32 bits where both fit (a 64-bit division is a
-/// library call on a 32-bit microcontroller, a 32-bit one a single instruction).
-fn floor_div(n: i64, d: i64) -> i64 {
-    match (i32::try_from(n), i32::try_from(d)) {
-        (Ok(n), Ok(d)) => i64::from(n.div_euclid(d)),
-        _ => n.div_euclid(d),
-    }
-}
-
-/// `⌈n / d⌉` for signed `n` and `d > 0`.
-fn ceil_div(n: i64, d: i64) -> i64 {
-    -floor_div(-n, d)
-}
-
 /// Two notch pairs, of widths `w` and `w + 1`, with spans in `range`, taking exactly `left`:
 /// `w·k₁ + (w + 1)·k₂ = left`. `w ≡ −1 (mod w + 1)`, so `k₁ ≡ −left (mod w + 1)`; the solutions
 /// are `k₁ = r + (w + 1)·t`, `k₂ = q − w·t`, and the inequalities of `range` bound `t`.
 fn solve_spans(left: u64, width: u64, range: (u64, u64)) -> Option<(u64, u64)> {
     // No span is longer than left / w, so clamping the range there keeps every value below
     // `left` (a few areas, < 2^50): 64-bit arithmetic, 32-bit divisions where they fit.
-    let high = range.1.min(left / width);
+    let high = range.1.min(div(left, width));
     let (w, left, low, high) = (
         i64::try_from(width).ok()?,
         i64::try_from(left).ok()?,
@@ -267,15 +254,15 @@ fn one_pair(
     let mut q = if area == 0 {
         0
     } else {
-        (least - left).div_ceil(area)
+        div_ceil(least - left, area)
     };
     // An even width needs an even distance: one more unit of an odd area fixes the parity.
-    if left.checked_add(q.checked_mul(area)?)? % w != 0 {
+    if rem(left.checked_add(q.checked_mul(area)?)?, w) != 0 {
         q += 1;
     }
     let target = left.checked_add(q.checked_mul(area)?)?;
-    let span = target / w;
-    (target % w == 0 && q <= available && span <= range.1 && span > width).then_some((span, q))
+    let span = div(target, w);
+    (rem(target, w) == 0 && q <= available && span <= range.1 && span > width).then_some((span, q))
 }
 
 /// How many widths around the estimate [`take`] tries.
@@ -337,9 +324,9 @@ pub(super) fn take(
                 return width;
             }
             let middle = (range.0 / 2 + range.1 / 2).max(1);
-            (left / middle.saturating_mul(2).saturating_add(1)).max(1)
+            div(left, middle.saturating_mul(2).saturating_add(1)).max(1)
         };
-        let guess = refine(refine((left / bounds.total.max(1)).max(1)));
+        let guess = refine(refine(div(left, bounds.total.max(1)).max(1)));
         // And half and all of the first ramp, where short moves have room.
         let ramp = bounds.last_rise_start;
         let around = guess.saturating_sub(1).max(1)..guess + WIDTH_TRIES;
@@ -362,7 +349,7 @@ pub(super) fn take(
             let least = (2 * w + 1).saturating_mul(l).saturating_add(both_ends);
             let most = (2 * w + 1).saturating_mul(h).saturating_sub(both_ends);
             let q = if left < least && area > 0 {
-                (least - left).div_ceil(area)
+                div_ceil(least - left, area)
             } else {
                 0
             };

@@ -38,6 +38,21 @@ pub(super) struct Limits64 {
     pub velocity: u64,
 }
 
+/// The eight corners of a triple box `tb(a, b, c)`: the cycles where its jerk changes, and by
+/// how much (±1), in the order they come.
+fn corners(a: u64, b: u64, c: u64) -> [(u64, i64); 8] {
+    [
+        (0, 1),
+        (a, -1),
+        (b, -1),
+        (a + b, 1),
+        (c, -1),
+        (c + a, 1),
+        (c + b, 1),
+        (c + a + b, -1),
+    ]
+}
+
 /// What a replay of a sealed schedule does, run by run ([`Schedule::replay`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub(super) struct Replay {
@@ -149,9 +164,13 @@ impl Schedule {
         if self.len + 1 >= SENTINEL {
             return; // Unreachable: MAX_CHANGES covers every group and pair, and the marker.
         }
-        let len = self.len;
-        self.holds.copy_within(at..len, at + 1);
-        self.jerks.copy_within(at..len, at + 1);
+        // A step or two back at most: a loop, not a library call.
+        let mut k = self.len;
+        while k > at {
+            self.holds[k] = self.holds[k - 1];
+            self.jerks[k] = self.jerks[k - 1];
+            k -= 1;
+        }
         self.holds[at] = cycle;
         self.jerks[at] = amount;
         self.len += 1;
@@ -168,25 +187,49 @@ impl Schedule {
     ) {
         self.len = 0;
         self.plan = plan;
-        // Slot by slot (the eight corners of a triple box in the order they come), so each
-        // change lands at or near the end of the list.
-        for slot in 0..8 {
-            for group in main.groups() {
-                let (a, b, c) = (group.a, group.b, group.c);
-                let (cycle, sign) = match slot {
-                    0 => (0, 1),
-                    1 => (a, -1),
-                    2 => (b, -1),
-                    3 => (a + b, 1),
-                    4 => (c, -1),
-                    5 => (c + a, 1),
-                    6 => (c + b, 1),
-                    _ => (c + a + b, -1),
-                };
-                let count = group.count as i64;
-                self.add(cycle, if sign == direction { count } else { -count });
+        // The groups of a unit mix differ from the longest ramps and cruise (a, b, c) by at most
+        // one cycle each, so the eight corners of all of them fall on at most 20 cycles: the
+        // corner `s` of a group with ramps one shorter by (δa, δb, δc) lands δ = the sum of the
+        // δs it includes before the longest group's. Their changes are added up in a table
+        // first (no search), then appended in order; groups further off (fine units) are added
+        // corner by corner.
+        let (a, b, c) = (main.most(|g| g.a), main.most(|g| g.b), main.most(|g| g.c));
+        // Counts of at most J < 2^31 units each, with their sign: 32 bits.
+        let mut table = [[0i32; 4]; 8];
+        for group in main.groups() {
+            let (da, db, dc) = (a - group.a, b - group.b, c - group.c);
+            let count = group.count as i32 * direction as i32;
+            if da > 1 || db > 1 || dc > 1 {
+                for (cycle, sign) in corners(group.a, group.b, group.c) {
+                    self.add(cycle, sign * i64::from(count));
+                }
+                continue;
+            }
+            let (da, db, dc) = (da as usize, db as usize, dc as usize);
+            for (slot, delta) in [0, da, db, da + db, dc, dc + da, dc + db, dc + da + db]
+                .into_iter()
+                .enumerate()
+            {
+                table[slot][delta] += count;
             }
         }
+        for (slot, (base, sign)) in corners(a, b, c).into_iter().enumerate() {
+            for delta in (0..4).rev() {
+                let amount = table[slot][delta];
+                if amount != 0 {
+                    // base ≥ δ: a shorter ramp or cruise is still at least one cycle.
+                    self.add(base - delta as u64, sign * i64::from(amount));
+                }
+            }
+        }
+        if !placement.notches().is_empty() {
+            self.merge(placement, direction);
+        }
+        self.seal();
+    }
+
+    /// Merges the notch pairs of `placement` into the sorted changes.
+    fn merge(&mut self, placement: &Placement, direction: i64) {
         // A jerk of ±1 on one cycle is a change by ±1 on it and back on the next. The pairs'
         // changes, sorted apart (at most 24), are merged in from the end in one pass.
         let mut cycles = [0u64; 8 * MAX_NOTCHES];
@@ -209,7 +252,7 @@ impl Schedule {
             }
         }
         let (mut i, mut k) = (self.len, count);
-        let mut write = (self.len + count).min(MAX_CHANGES - 1);
+        let mut write = (self.len + count).min(SENTINEL - 2);
         self.len = write;
         while k > 0 && write > 0 {
             write -= 1;
@@ -223,59 +266,44 @@ impl Schedule {
                 k -= 1;
             }
         }
-        // Changes on the same cycle are added up; changes on or after the last cycle never act,
-        // and changes that cancel out would cost a cycle's slow path for nothing. A replay
-        // starts with the change on cycle 0: one of nothing if the changes there cancelled out.
-        let total = plan.total;
-        let mut kept = 0;
-        for i in 0..self.len {
-            let (cycle, amount) = (self.holds[i], self.jerks[i]);
-            if cycle >= total {
-                break;
-            }
-            if kept > 0 && self.holds[kept - 1] == cycle {
-                self.jerks[kept - 1] = self.jerks[kept - 1].wrapping_add(amount);
-            } else {
-                if kept > 0 && self.jerks[kept - 1] == 0 && self.holds[kept - 1] > 0 {
-                    kept -= 1;
-                }
-                self.holds[kept] = cycle;
-                self.jerks[kept] = amount;
-                kept += 1;
-            }
-        }
-        if kept > 0 && self.jerks[kept - 1] == 0 && self.holds[kept - 1] > 0 {
-            kept -= 1;
-        }
-        // A replay starts with the change on cycle 0: one of nothing if there is none.
-        if kept == 0 || self.holds[0] > 0 {
-            kept = kept.min(SENTINEL - 2);
-            self.holds.copy_within(..kept, 1);
-            self.jerks.copy_within(..kept, 1);
-            self.holds[0] = 0;
-            self.jerks[0] = 0;
-            kept += 1;
-        }
-        self.len = kept;
-        self.seal();
     }
 
-    /// Makes the built schedule a replay: appends the end marker (on cycle `total`, setting the
-    /// jerk to zero; the acceleration and velocity are zero there already), and turns each change
-    /// into the jerk it sets and the cycles it holds (the marker's: for ever).
+    /// Makes the built schedule (changes sorted by cycle) a replay: runs of constant jerk, each
+    /// the jerk it sets and the cycles it holds, closed by an end marker (setting the jerk to
+    /// zero, held for ever: the acceleration and velocity are zero there already). Changes on the
+    /// same cycle are added up; changes that leave the jerk as it was, and those on or after the
+    /// last cycle, would cost a replay's slow path for nothing and are dropped. The replay
+    /// starts with the run from cycle 0 (of zero jerk if nothing changes there).
     fn seal(&mut self) {
-        let end = self.len.min(SENTINEL - 1);
-        self.holds[end] = self.plan.total;
-        self.jerks[end] = 0;
-        self.len = end + 1;
-        let mut jerk = 0i32;
-        for i in 0..end {
+        let total = self.plan.total;
+        // At most one run per change and the one from cycle 0, then the marker: all before the
+        // sentinel.
+        let len = self.len.min(SENTINEL - 2);
+        // The run open from cycle `start` with jerk `jerk`; runs before `written` are sealed.
+        // Each run is written at or before the change being read, which is read first.
+        let (mut written, mut start, mut jerk) = (0, 0u64, 0i32);
+        for i in 0..=len {
+            let (cycle, change) = if i < len {
+                (self.holds[i].min(total), self.jerks[i])
+            } else {
+                (total, 0)
+            };
+            if cycle != start {
+                if written > 0 && self.jerks[written - 1] == jerk {
+                    self.holds[written - 1] += cycle - start;
+                } else {
+                    self.holds[written] = cycle - start;
+                    self.jerks[written] = jerk;
+                    written += 1;
+                }
+                start = cycle;
+            }
             // The running sum modulo 2^32 is the jerk (see `jerks`).
-            jerk = jerk.wrapping_add(self.jerks[i]);
-            self.jerks[i] = jerk;
-            self.holds[i] = self.holds[i + 1] - self.holds[i];
+            jerk = jerk.wrapping_add(change);
         }
-        self.holds[end] = u64::MAX;
+        self.holds[written] = u64::MAX;
+        self.jerks[written] = 0;
+        self.len = written + 1;
     }
 
     /// Replays the sealed schedule run by run, in the move's direction (`direction` ±1): its

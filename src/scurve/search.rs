@@ -8,6 +8,7 @@
 //! the plan that wins. A last resort (two *fine units*, then ramps of one cycle) covers the few
 //! very short moves with a large jerk that notch pairs have no room in.
 
+use super::division::{div, div_ceil};
 use super::remainder::{self, velocity_notch, Placement};
 use super::schedule::{Limits64, Schedule};
 use super::shape::{MainMove, Mix};
@@ -54,28 +55,28 @@ struct Shape {
 const MAX_SHAPES: usize = 8;
 
 /// The shapes worth trying for a move of `distance` (2^-32 counts) within `limits`, fastest
-/// first (`(shapes, how many)`).
+/// first, into `found`; returns how many (filled in place: the list is a quarter of a kilobyte,
+/// and a copy costs about an instruction a byte on a Cortex-M4).
 ///
 /// The continuous optimum has jerk phases of `a* = min(A/J, √(V/J), ∛(D/2J))` cycles; the first
 /// ramp is its floor or ceiling. For each, the second ramp is the one that reaches the maximum
 /// velocity (`⌈V/peak⌉`) or the ones the distance allows with no cruise (the floor and ceiling
 /// of the root of `peak·b·(a + b) = D`, and one shorter), whichever is shorter.
-fn shapes(distance: u64, limits: Limits64) -> ([Shape; MAX_SHAPES], usize) {
+fn shapes(distance: u64, limits: Limits64, found: &mut [Shape; MAX_SHAPES]) -> usize {
     let (jerk, acceleration, velocity) = (limits.jerk, limits.acceleration, limits.velocity);
-    let by_acceleration = acceleration / jerk;
-    let by_velocity = (velocity / jerk).isqrt();
-    let by_distance = cube_root(distance / (2 * jerk));
+    let by_acceleration = div(acceleration, jerk);
+    let by_velocity = div(velocity, jerk).isqrt();
+    let by_distance = cube_root(div(distance, 2 * jerk));
     let a0 = by_acceleration.min(by_velocity).min(by_distance);
-    let mut found = [Shape::default(); MAX_SHAPES];
     let mut len = 0;
     // The floor and the ceiling of a* (both 1 when a* < 1).
     let firsts = if a0 == 0 { 1..=1 } else { a0..=a0 + 1 };
     for a in firsts {
         // a ≤ √(2^46) + 1, so jerk·a < 2^55.
         let peak = (jerk * a).min(acceleration);
-        let to_velocity = velocity.div_ceil(peak).max(a);
+        let to_velocity = div_ceil(velocity, peak).max(a);
         // peak·b·(a + b) ≤ D ⇔ b ≤ (√(a² + 4D/peak) − a)/2; D/peak < 2^63, a² < 2^47.
-        let quotient = distance / peak;
+        let quotient = div(distance, peak);
         let root = if quotient < 1 << 60 {
             (a * a + 4 * quotient).isqrt()
         } else {
@@ -100,7 +101,7 @@ fn shapes(distance: u64, limits: Limits64) -> ([Shape; MAX_SHAPES], usize) {
             }
             tried[i] = b;
             // Past the distance's own peak, a faster cruise cannot shorten the move.
-            let cap = distance / (a + b);
+            let cap = div(distance, a + b);
             let target = if b >= to_velocity {
                 velocity
             } else {
@@ -114,7 +115,7 @@ fn shapes(distance: u64, limits: Limits64) -> ([Shape; MAX_SHAPES], usize) {
                 a,
                 b,
                 target,
-                cycles: a + b + distance.div_ceil(target).max(a + b),
+                cycles: a + b + div_ceil(distance, target).max(a + b),
             };
             // Fastest first (an insertion sort of at most six).
             let mut k = len;
@@ -126,7 +127,7 @@ fn shapes(distance: u64, limits: Limits64) -> ([Shape; MAX_SHAPES], usize) {
             len += 1;
         }
     }
-    (found, len)
+    len
 }
 
 impl Shape {
@@ -144,7 +145,7 @@ impl Shape {
             return None;
         }
         // c·velocity − notch·(c − 1) ≥ distance.
-        let c = distance.saturating_sub(notch).div_ceil(cruise).max(a + b);
+        let c = div_ceil(distance.saturating_sub(notch), cruise).max(a + b);
         Some(Candidate { mix, notch, c })
     }
 }
@@ -158,7 +159,8 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
         direction,
         limits,
     };
-    let (found, len) = shapes(distance, limits);
+    let mut found = [Shape::default(); MAX_SHAPES];
+    let len = shapes(distance, limits, &mut found);
     let mut planned = false;
     'shapes: for shape in &found[..len] {
         // The mix that meets the velocity from below, and — unless it meets it exactly — the
@@ -210,7 +212,8 @@ fn with_fine_units(move_: &Move, out: &mut Schedule) -> bool {
         acceleration: limits.acceleration - 2,
         velocity: limits.velocity - 2,
     };
-    let (found, len) = shapes(move_.distance, spare);
+    let mut found = [Shape::default(); MAX_SHAPES];
+    let len = shapes(move_.distance, spare, &mut found);
     for shape in &found[..len] {
         let Some(candidate) = shape.candidate(true, move_.distance, spare) else {
             continue;
@@ -241,7 +244,7 @@ fn early_units(mix: &Mix, c: u64, mut over: u64) -> ([u64; 4], u64) {
     for k in 0..4 {
         // A unit can end its cruise early only if it still has a cruise (c − 1 ≥ aₖ + bₖ).
         if areas[k] > 0 && mix.counts[k] > 0 && over >= areas[k] && c > kinds[k].0 + kinds[k].1 {
-            let units = (over / areas[k]).min(mix.counts[k]);
+            let units = div(over, areas[k]).min(mix.counts[k]);
             early[k] = units;
             over -= units * areas[k];
         }

@@ -15,6 +15,8 @@
 //! `(a, b)`, `(a, b − 1)`, `(a − 1, b)` and `(a − 1, b − 1)`, reaches the limits to the raw unit
 //! ([`Mix::solve`]).
 
+use super::division::{div, div_ceil, rem};
+
 /// One group of identical units: `count · tb(a, b, c)`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub(super) struct Group {
@@ -110,7 +112,7 @@ impl MainMove {
     }
 
     /// The largest of `f` over the groups (0 when empty).
-    fn most(&self, f: impl Fn(&Group) -> u64) -> u64 {
+    pub fn most(&self, f: impl Fn(&Group) -> u64) -> u64 {
         self.groups().iter().map(f).max().unwrap_or(0)
     }
 
@@ -239,9 +241,9 @@ impl Mix {
             .or_else(|| nearest(lowering, a, long_room, short, under).map(|(x, y)| (x, y, 0)))
             .or_else(|| {
                 let z = if under {
-                    lowering.div_ceil(b)
+                    div_ceil(lowering, b)
                 } else {
-                    lowering / b
+                    div(lowering, b)
                 };
                 (below_limit && z <= long).then_some((0, 0, z))
             })?;
@@ -291,14 +293,17 @@ fn by_shorter_first_ramps(
     long_room: u64,
     long: u64,
 ) -> Option<(u64, u64, u64)> {
-    let (g, inverse) = inverse_mod(b % a, a);
-    if lowering % g != 0 {
+    let (g, inverse) = inverse_mod(rem(b, a), a);
+    if rem(lowering, g) != 0 {
         return None;
     }
-    let modulus = a / g;
+    let modulus = div(a, g);
     // Both factors are below the modulus (< 2^24), so the product fits.
-    let z = (lowering / g % modulus) * (inverse % modulus) % modulus;
-    let x = lowering.checked_sub(b.checked_mul(z)?)? / a;
+    let z = rem(
+        rem(div(lowering, g), modulus) * rem(inverse, modulus),
+        modulus,
+    );
+    let x = div(lowering.checked_sub(b.checked_mul(z)?)?, a);
     (x <= long_room && x + z <= long).then_some((x, 0, z))
 }
 
@@ -324,27 +329,19 @@ fn inverse_mod(value: u64, modulus: u64) -> (u64, u64) {
 /// then units of `a − 1` for the rest; `None` if the units cannot lower that far.
 fn nearest(lowering: u64, a: u64, long: u64, short: u64, under: bool) -> Option<(u64, u64)> {
     let x = if under {
-        lowering.div_ceil(a)
+        div_ceil(lowering, a)
     } else {
-        lowering / a
+        div(lowering, a)
     }
     .min(long);
     let rest = lowering.saturating_sub(a * x);
     let y = match (rest, a - 1) {
         (0, _) => 0,
         (_, 0) => return None,
-        (rest, by) if under => rest.div_ceil(by),
-        (rest, by) => rest / by,
+        (rest, by) if under => div_ceil(rest, by),
+        (rest, by) => div(rest, by),
     };
     (y <= short).then_some((x, y))
-}
-
-/// `n mod d`, in 32 bits where both fit (a 64-bit division is a library call on a 32-bit core).
-fn rem(n: u64, d: u64) -> u64 {
-    match (u32::try_from(n), u32::try_from(d)) {
-        (Ok(n), Ok(d)) => u64::from(n % d),
-        _ => n % d,
-    }
 }
 
 /// `a·x + (a − 1)·y = lowering` with `0 ≤ x ≤ long`, `0 ≤ y ≤ short`, the least `y` first; `None`
@@ -355,10 +352,10 @@ fn split(lowering: u64, a: u64, long: u64, short: u64) -> Option<(u64, u64)> {
     }
     // (a − 1)·y ≡ lowering (mod a) ⇔ y ≡ −lowering (mod a); then y = y₀ + a·t and
     // x = x₀ − (a − 1)·t.
-    let y0 = (a - rem(lowering, a)) % a;
-    let x0 = lowering.checked_sub((a - 1) * y0)? / a;
+    let y0 = rem(a - rem(lowering, a), a);
+    let x0 = div(lowering.checked_sub((a - 1) * y0)?, a);
     // The least t ≥ 0 with x ≤ long.
-    let t = x0.saturating_sub(long).div_ceil(a - 1);
+    let t = div_ceil(x0.saturating_sub(long), a - 1);
     let y = y0.checked_add(a.checked_mul(t)?)?;
     let x = x0.checked_sub((a - 1).checked_mul(t)?)?;
     (y <= short && x <= long).then_some((x, y))

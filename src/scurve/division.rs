@@ -1,0 +1,139 @@
+//! Division of 64-bit integers that takes the 32-bit instruction where the operands fit.
+//!
+//! On a Cortex-M4 a 64-bit division is a library call of about 80 instructions, a 32-bit one a
+//! single `udiv`/`sdiv`; most of the planner's quotients (ramp lengths, unit counts, spans) have
+//! both operands under 2^32, so checking costs a few instructions and saves the call. The
+//! results are the same as the 64-bit operators', panics on a zero divisor included. A 64-bit
+//! dividend by a 32-bit divisor takes a long division in 32-bit steps, about half the library's
+//! cost.
+
+/// `(⌊n / d⌋, n mod d)`.
+#[inline]
+pub(super) fn div_rem(n: u64, d: u64) -> (u64, u64) {
+    match (u32::try_from(n), u32::try_from(d)) {
+        (Ok(n), Ok(d)) => (u64::from(n / d), u64::from(n % d)),
+        (Err(_), Ok(d)) if d != 0 => by_narrow(n, d),
+        _ => (n / d, n % d),
+    }
+}
+
+/// `⌊n / d⌋`.
+#[inline]
+pub(super) fn div(n: u64, d: u64) -> u64 {
+    div_rem(n, d).0
+}
+
+/// `⌈n / d⌉`.
+#[inline]
+pub(super) fn div_ceil(n: u64, d: u64) -> u64 {
+    let (quotient, remainder) = div_rem(n, d);
+    quotient + u64::from(remainder != 0)
+}
+
+/// `n mod d`.
+#[inline]
+pub(super) fn rem(n: u64, d: u64) -> u64 {
+    div_rem(n, d).1
+}
+
+/// A 64-bit `n` by a 32-bit `d > 0`: long division in base 2^32, the high word first; the low
+/// word's step divides a 64-bit value by `d` knowing the quotient fits 32 bits
+/// ([`narrow_step`]).
+#[inline(never)]
+fn by_narrow(n: u64, d: u32) -> (u64, u64) {
+    let (high, low) = ((n >> 32) as u32, n as u32);
+    let (quotient_high, carried) = (high / d, high % d);
+    let (quotient_low, remainder) = narrow_step(carried, low, d);
+    (
+        u64::from(quotient_high) << 32 | u64::from(quotient_low),
+        u64::from(remainder),
+    )
+}
+
+/// `(high·2^32 + low) / d` and its remainder, for `high < d` (so the quotient fits 32 bits), with
+/// 32-bit divisions only: Knuth's algorithm D in base 2^16 with the divisor normalized (its top
+/// bit set), each quotient digit estimated from the divisor's top half and corrected at most
+/// twice (H. S. Warren, *Hacker's Delight*, 2nd ed., §9-4, `divlu`).
+fn narrow_step(high: u32, low: u32, d: u32) -> (u32, u32) {
+    const BASE: u32 = 1 << 16;
+    let shift = d.leading_zeros();
+    let d = d << shift;
+    let (d_high, d_low) = (d >> 16, d & 0xFFFF);
+    // The dividend shifted as the divisor was: three digits and a half (high < d, so no bit is
+    // lost off the top).
+    let top = if shift == 0 {
+        high
+    } else {
+        high << shift | low >> (32 - shift)
+    };
+    let bottom = low << shift;
+    let (digit1, digit0) = (bottom >> 16, bottom & 0xFFFF);
+    // One quotient digit of `top·BASE + next` by d, and what remains (< d).
+    let digit = |top: u32, next: u32| {
+        let mut q = top / d_high;
+        let mut r = top - q * d_high;
+        // q ≥ BASE is tested first, so q·d_low is only formed below 2^32; r < BASE there too.
+        while q >= BASE || q * d_low > BASE * r + next {
+            q -= 1;
+            r += d_high;
+            if r >= BASE {
+                break;
+            }
+        }
+        // Exact modulo 2^32, and the true value is below d.
+        let remaining = top
+            .wrapping_mul(BASE)
+            .wrapping_add(next)
+            .wrapping_sub(q.wrapping_mul(d));
+        (q, remaining)
+    };
+    let (q1, middle) = digit(top, digit1);
+    let (q0, remaining) = digit(middle, digit0);
+    (q1 * BASE + q0, remaining >> shift)
+}
+
+/// `⌊n / d⌋` for signed `n` and `d > 0`.
+#[inline]
+pub(super) fn floor_div(n: i64, d: i64) -> i64 {
+    match (i32::try_from(n), i32::try_from(d)) {
+        (Ok(n), Ok(d)) => i64::from(n.div_euclid(d)),
+        _ => n.div_euclid(d),
+    }
+}
+
+/// `⌈n / d⌉` for signed `n` and `d > 0`.
+#[inline]
+pub(super) fn ceil_div(n: i64, d: i64) -> i64 {
+    -floor_div(-n, d)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// Values of every width, the 32-bit boundary and zero most of all.
+    fn operand() -> impl Strategy<Value = u64> {
+        prop_oneof![
+            (0u32..=64).prop_flat_map(|bits| 0..=u64::MAX >> (64 - bits.max(1))),
+            Just(u64::from(u32::MAX)),
+            Just(1u64 << 32),
+        ]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(20_000))]
+
+        #[test]
+        fn the_same_as_the_64_bit_operators(n in operand(), d in operand()) {
+            prop_assume!(d > 0);
+            prop_assert_eq!(div_rem(n, d), (n / d, n % d));
+            prop_assert_eq!(div(n, d), n / d);
+            prop_assert_eq!(div_ceil(n, d), n.div_ceil(d));
+            prop_assert_eq!(rem(n, d), n % d);
+            let (sn, sd) = (n as i64, (d >> 1).max(1) as i64);
+            prop_assert_eq!(floor_div(sn, sd), sn.div_euclid(sd));
+            prop_assert_eq!(ceil_div(sn, sd), -((-(sn as i128)).div_euclid(sd as i128)) as i64);
+        }
+    }
+}
