@@ -316,6 +316,10 @@ pub(super) fn take(
                 return Some((found, q));
             }
         }
+        // Two pairs only with the first notch in phases I–II (see above).
+        if first_in_cruise {
+            continue;
+        }
         // The widths whose spans land in the middle of their range: from spans of half
         // the move, refined twice (the range depends a little on the width).
         let refine = |width: u64| {
@@ -335,7 +339,7 @@ pub(super) fn take(
                 .into_iter()
                 .filter(move |w| !around.contains(w)),
         );
-        for width in widths.filter(|&w| w > 0 && !first_in_cruise) {
+        for width in widths.filter(|&w| w > 0) {
             let (first1, second1, narrow) = region(width);
             let (first2, second2, wide) = region(width + 1);
             let (low, high) = (narrow.0.max(wide.0), narrow.1.min(wide.1));
