@@ -7,7 +7,15 @@
 //! dividend by a 32-bit divisor takes a long division in 32-bit steps, and a divisor of 64 bits
 //! one such step on its top half, each about half the library's cost.
 
+/// `(⌊n / d⌋, n mod d)`: the hardware's own division on a 64-bit target.
+#[cfg(target_pointer_width = "64")]
+#[inline]
+pub(super) fn div_rem(n: u64, d: u64) -> (u64, u64) {
+    (n / d, n % d)
+}
+
 /// `(⌊n / d⌋, n mod d)`.
+#[cfg(not(target_pointer_width = "64"))]
 #[inline]
 pub(super) fn div_rem(n: u64, d: u64) -> (u64, u64) {
     match (u32::try_from(n), u32::try_from(d)) {
@@ -40,6 +48,8 @@ pub(super) fn rem(n: u64, d: u64) -> u64 {
 /// A 64-bit `n` by a 32-bit `d > 0`: long division in base 2^32, the high word first; the low
 /// word's step divides a 64-bit value by `d` knowing the quotient fits 32 bits
 /// ([`narrow_step`]).
+// On a 64-bit target only the tests call it (they check it there too).
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
 #[inline(never)]
 fn by_narrow(n: u64, d: u32) -> (u64, u64) {
     let (high, low) = ((n >> 32) as u32, n as u32);
@@ -54,6 +64,7 @@ fn by_narrow(n: u64, d: u32) -> (u64, u64) {
 /// A 64-bit `n` by a `d ≥ 2^32` (so the quotient fits 32 bits): the quotient of `n/2` by the
 /// divisor's top 32 bits (normalized), scaled back, is the quotient or one more; one less is
 /// at most one short, which one comparison puts right (*Hacker's Delight*, §9-5, `divDU`).
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
 #[inline(never)]
 fn by_wide(n: u64, d: u64) -> (u64, u64) {
     let shift = d.leading_zeros();
@@ -76,6 +87,7 @@ fn by_wide(n: u64, d: u64) -> (u64, u64) {
 /// 32-bit divisions only: Knuth's algorithm D in base 2^16 with the divisor normalized (its top
 /// bit set), each quotient digit estimated from the divisor's top half and corrected at most
 /// twice (H. S. Warren, *Hacker's Delight*, 2nd ed., §9-4, `divlu`).
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
 fn narrow_step(high: u32, low: u32, d: u32) -> (u32, u32) {
     const BASE: u32 = 1 << 16;
     let shift = d.leading_zeros();
@@ -149,6 +161,13 @@ mod tests {
         #[test]
         fn the_same_as_the_64_bit_operators(n in operand(), d in operand().prop_map(|d| d.max(1))) {
             prop_assert_eq!(div_rem(n, d), (n / d, n % d));
+            // The 32-bit target's paths, checked on every target.
+            if n >> 32 != 0 && d >> 32 == 0 {
+                prop_assert_eq!(by_narrow(n, d as u32), (n / d, n % d));
+            }
+            if d >> 32 != 0 {
+                prop_assert_eq!(by_wide(n, d), (n / d, n % d));
+            }
             prop_assert_eq!(div(n, d), n / d);
             prop_assert_eq!(div_ceil(n, d), n.div_ceil(d));
             prop_assert_eq!(rem(n, d), n % d);
