@@ -91,7 +91,8 @@ type Window = Box<dyn Fn(Option<&str>)>;
 
 fn main() {
     let arguments: Vec<String> = std::env::args().skip(1).collect();
-    let list = arguments.first().map(String::as_str) == Some("--list");
+    // No argument: the list too (what `.ci/run` runs).
+    let list = matches!(arguments.first().map(String::as_str), None | Some("--list"));
     let windows: [(&str, Window); 9] = [
         (
             "velocity/ramp",
