@@ -97,8 +97,6 @@ enum Phase {
     /// A run of the plan: the velocity (in the frame where the destination lies ahead) is
     /// `next`, then changes by `increment` every cycle, for `count` cycles.
     Run,
-    /// At rest on the destination.
-    Rest,
     /// Heading for the destination from a state no plan covers (moving away from it, above the
     /// maximum velocity, or too fast to stop on it after a change): each cycle decides from
     /// scratch, then plans again.
@@ -224,7 +222,7 @@ impl Trapezoidal {
     ) -> Result<Self, Error> {
         let profile = parameters.profile()?;
         let mut generator = Self {
-            phase: Phase::Rest,
+            phase: Phase::Run,
             next: 0,
             increment: 0,
             count: 0,
@@ -339,7 +337,7 @@ impl Trapezoidal {
     /// stopped axis keeps stopping).
     fn replan(&mut self) {
         self.abrupt_state = None;
-        if matches!(self.phase, Phase::Run | Phase::Rest | Phase::Decide) {
+        if matches!(self.phase, Phase::Run | Phase::Decide) {
             self.plan();
         }
     }
@@ -475,7 +473,7 @@ impl Trapezoidal {
         } = self.profile;
         self.sign = sign;
         if distance == 0 && velocity == 0 {
-            self.phase = Phase::Rest;
+            self.rest();
             return;
         }
         if !(0..=max_velocity).contains(&velocity) {
@@ -622,22 +620,27 @@ impl Trapezoidal {
                 self.plan.stage = Stage::Arrive;
                 self.set_run(0, 0, 1);
             }
-            Stage::Arrive => self.phase = Phase::Rest,
+            Stage::Arrive => self.rest(),
         }
     }
 
-    /// Every cycle that is not a run of the plan: at rest, deciding from scratch, stopping.
+    /// At rest on the destination: a run at velocity zero that never ends (2^64 cycles), so
+    /// resting cycles take the common path too (the state stays `State::at_rest`).
+    fn rest(&mut self) {
+        self.plan.stage = Stage::Arrive;
+        self.phase = Phase::Run;
+        self.next = 0;
+        self.increment = 0;
+        self.count = u64::MAX;
+    }
+
+    /// Every cycle that is not a run of the plan: deciding from scratch, stopping.
     #[cold]
     #[inline(never)]
     fn step_otherwise(&mut self) -> State {
         let velocity = self.state.velocity.to_bits();
         let next = match self.phase {
             Phase::Run => unreachable!("runs step in `step`"),
-            Phase::Rest => {
-                let state = State::at_rest(self.state.position);
-                self.state = state;
-                return state;
-            }
             Phase::Decide => {
                 let (distance, sign) = self.ahead();
                 let ahead = i128::from(distance) * i128::from(sign | 1);
@@ -701,9 +704,7 @@ impl ProfileGenerator for Trapezoidal {
     fn is_complete(&self) -> bool {
         self.state.velocity == I32F32::ZERO
             && match self.phase {
-                Phase::Run | Phase::Rest | Phase::Decide => {
-                    self.destination == self.state.position.to_bits()
-                }
+                Phase::Run | Phase::Decide => self.destination == self.state.position.to_bits(),
                 Phase::Stopped => true,
                 Phase::Stopping | Phase::AbruptPending { .. } => false,
             }
