@@ -48,6 +48,25 @@ impl State {
     }
 }
 
+/// Advances `state` by one cycle at `velocity` (as [`State::advanced`]) and returns the new
+/// state, written field by field to both places: storing a whole `State` and returning a copy
+/// of it makes the compiler write the return slot and copy it over, or reload what it just
+/// stored (a store-forwarding stall on x86). The generators' `step` ends with this.
+#[inline(always)]
+pub(crate) fn advance(state: &mut State, velocity: I32F32) -> State {
+    let position = state.position.wrapping_add(velocity);
+    // As in `advanced`: velocities are bounded by their registers, no overflow.
+    let acceleration = velocity.wrapping_sub(state.velocity);
+    state.position = position;
+    state.velocity = velocity;
+    state.acceleration = acceleration;
+    State {
+        position,
+        velocity,
+        acceleration,
+    }
+}
+
 /// How to stop (SPEC §9).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum StopKind {

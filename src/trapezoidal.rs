@@ -5,7 +5,7 @@
 use fixed::types::I32F32;
 
 use crate::format::juno::{Acceleration, TargetVelocity};
-use crate::state::{Limits, ProfileGenerator, State, StopKind};
+use crate::state::{advance, Limits, ProfileGenerator, State, StopKind};
 use crate::Error;
 
 /// The parameters of a trapezoidal move, in Juno register formats.
@@ -91,27 +91,77 @@ impl TrapezoidalParameters {
     }
 }
 
-/// What the generator is doing.
+/// What the next cycle does.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Mode {
-    /// Heading for the destination (or resting on it).
-    Move,
+enum Phase {
+    /// A run of the plan: the velocity (in the frame where the destination lies ahead) is
+    /// `next`, then changes by `increment` every cycle, for `count` cycles.
+    Run,
+    /// Heading for the destination from a state no plan covers (moving away from it, above the
+    /// maximum velocity, or too fast to stop on it after a change): each cycle decides from
+    /// scratch, then plans again.
+    Decide,
     /// Smooth stop: decelerating to rest, destination abandoned.
     Stopping,
-    /// Abrupt stop pending for the next cycle; then `Move` if a new maximum velocity came in the
-    /// meantime (`resume`), else `Stopped`.
+    /// Abrupt stop pending for the next cycle; then heading for the destination if a new maximum
+    /// velocity came in the meantime (`resume`), else `Stopped`.
     AbruptPending { resume: bool },
     /// Stopped: the velocity register is zero; a new maximum velocity restarts.
     Stopped,
 }
 
+/// Which run of the plan is under way.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Stage {
+    /// Speeding up by A (the first cycle from rest by A plus the starting velocity).
+    Accelerate,
+    /// At the maximum velocity.
+    Cruise,
+    /// The first braking velocity, then D less every cycle while the leftover distance waits.
+    Brake,
+    /// One unit more than D less (the leftover distance spent), then D less every cycle.
+    Bump,
+    /// The cycle that arrives: velocity zero.
+    Arrive,
+}
+
+/// The braking a plan ends with, decided when the plan was made (see [`Trapezoidal::plan`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Braking {
+    /// The first braking velocity, I32F32 bits: the largest whose stopping distance fits.
+    velocity: i64,
+    /// The distance that velocity's stopping distance leaves over, units of 2^-32 counts: at
+    /// most `segment`.
+    leftover: u64,
+    /// The segment of the stopping distance that velocity lies in: ⌊velocity / D⌋.
+    segment: u64,
+}
+
+/// The cycles from a decision to arrival, as runs of constant velocity change.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Plan {
+    stage: Stage,
+    /// Cycles at the maximum velocity after the accelerating run.
+    cruise: u64,
+    /// The braking that follows, or `None` when the axis cannot stop on the destination within
+    /// D any more (after a change): then each cycle decides from scratch.
+    braking: Option<Braking>,
+}
+
 /// The trapezoidal point-to-point generator.
 ///
-/// Every cycle it takes the largest velocity that (a) speeds up by at most A (or jumps to the
+/// Every cycle takes the largest velocity that (a) speeds up by at most A (or jumps to the
 /// starting velocity from rest), (b) stays within the maximum velocity, and (c) still lets the
 /// axis stop exactly on the destination decelerating by at most D per cycle — see
 /// [`Trapezoidal::braking_velocity`] for how (c) is exact. So it arrives exactly, with no
 /// precomputed deceleration point, and any parameter can change in motion.
+///
+/// Those decisions are taken ahead: every command (and the cycle after a stop that resumes)
+/// works out, from the present state, on which cycle (c) will first bind and what the braking
+/// velocities will be, and stepping replays that as runs of constant velocity change. Until the
+/// next command, each cycle's velocity is exactly the one a decision from that cycle's state
+/// would take (tested against the per-cycle decision, `tests/same_states.rs`); any command
+/// drops the plan and works it out again.
 ///
 /// ```
 /// use profilegen::format::juno::{Acceleration, TargetVelocity};
@@ -130,21 +180,27 @@ enum Mode {
 /// ```
 #[derive(Debug, Clone)]
 pub struct Trapezoidal {
+    // The per-cycle fields first.
+    phase: Phase,
+    /// The velocity of the next cycle of the run, in the frame where the destination lies
+    /// ahead (I32F32 bits).
+    next: i64,
+    /// Its change per cycle.
+    increment: i64,
+    /// Cycles left in the run.
+    count: u64,
+    /// 0 when the destination lies in the positive direction, −1 when negative: a velocity
+    /// `v` ahead is `(v ^ sign) − sign` on the axis (two's complement negation by mask).
+    sign: i64,
+    state: State,
+    plan: Plan,
     parameters: TrapezoidalParameters,
     profile: Profile,
     /// The destination as I32F32 bits.
     destination: i64,
-    state: State,
-    mode: Mode,
-    /// The speed-up limit that governed the last cycle (A, or the starting-velocity jump).
-    last_speed_up: i64,
-    /// The velocity limit of the last cycle: the maximum velocity, or the velocity before it if
-    /// that was higher (a lowered maximum is reached by decelerating at D).
-    last_velocity_bound: i64,
-    last_was_abrupt: bool,
-    /// `(velocity, stopping distance)`: the last [`Self::stopping_distance`] computed, which in cruise
-    /// is asked for the same velocity every cycle.
-    cached_stop: (i64, i128),
+    /// The state the last abrupt stop produced, until a command: while the generator still
+    /// shows it, its last cycle was that stop (for [`ProfileGenerator::limits`]).
+    abrupt_state: Option<State>,
 }
 
 impl Trapezoidal {
@@ -165,17 +221,25 @@ impl Trapezoidal {
         position: I32F32,
     ) -> Result<Self, Error> {
         let profile = parameters.profile()?;
-        Ok(Self {
+        let mut generator = Self {
+            phase: Phase::Run,
+            next: 0,
+            increment: 0,
+            count: 0,
+            sign: 0,
+            state: State::at_rest(position),
+            plan: Plan {
+                stage: Stage::Arrive,
+                cruise: 0,
+                braking: None,
+            },
             parameters,
             profile,
             destination: i64::from(parameters.destination) << 32,
-            state: State::at_rest(position),
-            mode: Mode::Move,
-            last_speed_up: profile.acceleration,
-            last_velocity_bound: profile.max_velocity,
-            last_was_abrupt: false,
-            cached_stop: (-1, 0),
-        })
+            abrupt_state: None,
+        };
+        generator.plan();
+        Ok(generator)
     }
 
     /// The parameters in force (after a stop the maximum velocity reads zero, as the chip's
@@ -183,8 +247,8 @@ impl Trapezoidal {
     pub fn parameters(&self) -> TrapezoidalParameters {
         let mut parameters = self.parameters;
         if matches!(
-            self.mode,
-            Mode::Stopped | Mode::Stopping | Mode::AbruptPending { resume: false }
+            self.phase,
+            Phase::Stopped | Phase::Stopping | Phase::AbruptPending { resume: false }
         ) {
             parameters.max_velocity = TargetVelocity::ZERO;
         }
@@ -197,13 +261,15 @@ impl Trapezoidal {
     /// # Errors
     /// As [`TrapezoidalParameters::validate`]; on error nothing changes.
     pub fn set_parameters(&mut self, parameters: TrapezoidalParameters) -> Result<(), Error> {
-        self.change(parameters)?;
+        self.profile = parameters.profile()?;
+        self.parameters = parameters;
         self.destination = i64::from(parameters.destination) << 32;
+        self.abrupt_state = None;
         // A new velocity restarts a stopped or stopping axis (the abrupt stop still happens).
-        self.mode = match self.mode {
-            Mode::Stopped | Mode::Stopping | Mode::Move => Mode::Move,
-            Mode::AbruptPending { .. } => Mode::AbruptPending { resume: true },
-        };
+        match self.phase {
+            Phase::AbruptPending { .. } => self.phase = Phase::AbruptPending { resume: true },
+            _ => self.plan(),
+        }
         Ok(())
     }
 
@@ -213,6 +279,7 @@ impl Trapezoidal {
     pub fn set_destination(&mut self, destination: i32) {
         self.parameters.destination = destination;
         self.destination = i64::from(destination) << 32;
+        self.replan();
     }
 
     /// Sets a new maximum velocity; applies from the next cycle (a lower one means decelerate at
@@ -262,26 +329,30 @@ impl Trapezoidal {
     fn change(&mut self, parameters: TrapezoidalParameters) -> Result<(), Error> {
         self.profile = parameters.profile()?;
         self.parameters = parameters;
-        self.cached_stop = (-1, 0);
+        self.replan();
         Ok(())
+    }
+
+    /// After a command: plans again if the axis is heading for the destination (a stopping or
+    /// stopped axis keeps stopping).
+    fn replan(&mut self) {
+        self.abrupt_state = None;
+        if matches!(self.phase, Phase::Run | Phase::Decide) {
+            self.plan();
+        }
     }
 
     /// The distance (I32F32 bits) travelled from a cycle at `velocity` ≥ 0 (that cycle
     /// included) until rest, slowing down by the full deceleration D every cycle:
     /// `T(v) = v + (v − D) + (v − 2D) + … ` over the positive terms, then 0 (the last positive
     /// term is ≤ D, so that drop is allowed). With `q = ⌊v / D⌋`:
-    /// `T(v) = (q + 1)·v − D·q(q + 1)/2`. Exact in i128 (v < 2^48, q < 2^40).
-    fn stopping_distance(&mut self, velocity: i64) -> i128 {
-        if self.cached_stop.0 == velocity {
-            return self.cached_stop.1;
-        }
-        let deceleration = i128::from(self.profile.deceleration);
-        let velocity_wide = i128::from(velocity);
-        // Floor division of non-negative values.
-        let q = velocity_wide / deceleration;
-        let distance = (q + 1) * velocity_wide - deceleration * q * (q + 1) / 2;
-        self.cached_stop = (velocity, distance);
-        distance
+    /// `T(v) = (q + 1)·v − D·q(q + 1)/2`. Exact: v < 2^48 and D ≥ 2^8, so q < 2^40 and the
+    /// products stay below 2^89.
+    fn stopping_distance(velocity: i64, deceleration: i64) -> i128 {
+        // Floor division of non-negative values below 2^48: u64 is enough.
+        let q = (velocity as u64 / deceleration as u64) as i128;
+        let (velocity, deceleration) = (i128::from(velocity), i128::from(deceleration));
+        (q + 1) * velocity - deceleration * (q * (q + 1) / 2)
     }
 
     /// The largest velocity `v` (I32F32 bits) with `T(v) ≤ distance`: the fastest this cycle may
@@ -320,8 +391,9 @@ impl Trapezoidal {
         (numerator / (q + 1)) as i64
     }
 
-    /// The next velocity in the frame where the destination lies ahead (`distance ≥ 0`).
-    fn next_velocity_ahead(&mut self, distance: i128, velocity: i64) -> i64 {
+    /// The per-cycle decision from scratch, in the frame where the destination lies ahead
+    /// (`distance ≥ 0`): the velocity rule of the type's documentation, for any state.
+    fn decide_ahead(&self, distance: i128, velocity: i64) -> i64 {
         let Profile {
             max_velocity,
             acceleration,
@@ -335,7 +407,6 @@ impl Trapezoidal {
         } else {
             acceleration
         };
-        self.last_speed_up = speed_up;
         if velocity < 0 {
             // Moving away from the destination: slow down by D; the cycle that crosses zero
             // changes the velocity by at most D in all and speeds up by at most A.
@@ -352,7 +423,7 @@ impl Trapezoidal {
         } else {
             (velocity + speed_up).min(max_velocity)
         };
-        if self.stopping_distance(upper) <= distance {
+        if Self::stopping_distance(upper, deceleration) <= distance {
             return upper;
         }
         // Braking is due. From any state reached under constant parameters the braking velocity
@@ -361,22 +432,235 @@ impl Trapezoidal {
         // overshoots as little as it can.
         Self::braking_velocity(distance, deceleration).max(velocity - deceleration)
     }
-}
 
-impl ProfileGenerator for Trapezoidal {
-    fn step(&mut self) -> State {
-        let velocity = self.state.velocity.to_bits();
-        self.last_was_abrupt = false;
-        self.last_speed_up = self.profile.acceleration;
-        self.last_velocity_bound = self.profile.max_velocity.max(velocity.abs());
-        let next = match self.mode {
-            Mode::AbruptPending { resume } => {
-                self.mode = if resume { Mode::Move } else { Mode::Stopped };
-                self.last_was_abrupt = true;
-                0
+    /// The signed distance to go and the direction mask of the frame where it lies ahead
+    /// (the destination's side, or the velocity's when on it).
+    fn ahead(&self) -> (i64, i64) {
+        // Modulo the 32-bit position register: the move goes the short way round, as on the
+        // chip (exact for every |distance| < 2^31 counts).
+        let distance = self.destination.wrapping_sub(self.state.position.to_bits());
+        let toward = if distance != 0 {
+            distance
+        } else {
+            self.state.velocity.to_bits()
+        };
+        (distance, toward >> 63)
+    }
+
+    /// Works out, from the present state and parameters, the cycles to the destination: the
+    /// decisions of [`Self::decide_ahead`] for every cycle until the next command, taken at once.
+    ///
+    /// In the frame where the destination lies ahead, with `d` the distance and `v` the velocity
+    /// (0 ≤ v ≤ the maximum V): cycle `i` would go at `u_i = min(w + i·A, V)` (`w` = v, or the
+    /// starting velocity from rest), and it may as long as `T(u_i)` fits in what is left,
+    /// `d − (u_1 + … + u_{i−1})`. Both sides are monotone in `i` (the velocities rise, the
+    /// distance left falls), so the first cycle that must brake is found by bisection over the
+    /// accelerating cycles, or by one division over the cruising ones. From there the braking
+    /// velocity `b` = [`Self::braking_velocity`] of the distance left, which leaves
+    /// `L = distance − T(b) ≤ q = ⌊b / D⌋` over. Each later cycle's distance left is
+    /// `T(b − k·D) + L` (`T(x) = x + T(x − D)`), whose braking velocity is `b − k·D` while
+    /// `L` is less than the segment's slope, one unit more on the cycle it equals it (`L` is
+    /// then spent), and zero once in segment 0: so the braking cycles are runs too, and the
+    /// decision of every cycle is known without a division.
+    fn plan(&mut self) {
+        let (distance, sign) = self.ahead();
+        let velocity = (self.state.velocity.to_bits() ^ sign) - sign;
+        let Profile {
+            max_velocity,
+            acceleration,
+            deceleration,
+            start_velocity,
+        } = self.profile;
+        self.sign = sign;
+        if distance == 0 && velocity == 0 {
+            self.rest();
+            return;
+        }
+        if !(0..=max_velocity).contains(&velocity) {
+            self.phase = Phase::Decide;
+            return;
+        }
+        // |distance| ≤ 2^63; in i128 throughout the search.
+        let distance = i128::from(distance.unsigned_abs());
+        let base = if velocity == 0 {
+            start_velocity
+        } else {
+            velocity
+        };
+        // Cycles that accelerate without reaching V: base + i·A < V ⇔ i ≤ (V − base − 1) / A.
+        // `base` ≤ V (the starting velocity is at most V), so the numerator is ≥ −1.
+        let rising = u64::try_from((max_velocity - base - 1) / acceleration).unwrap_or(0);
+        let (base_wide, acceleration_wide, max_wide) = (
+            i128::from(base),
+            i128::from(acceleration),
+            i128::from(max_velocity),
+        );
+        // u_i and u_1 + … + u_k (k < 2^56 and every velocity < 2^48: below 2^104).
+        let velocity_of = |i: u64| -> i64 {
+            if i <= rising {
+                base + i as i64 * acceleration
+            } else {
+                max_velocity
             }
-            Mode::Stopped => 0,
-            Mode::Stopping => {
+        };
+        let covered = |k: u64| -> i128 {
+            let rising_part = i128::from(k.min(rising));
+            rising_part * base_wide
+                + acceleration_wide * (rising_part * (rising_part + 1) / 2)
+                + i128::from(k - k.min(rising)) * max_wide
+        };
+        let may = |i: u64| -> bool {
+            Self::stopping_distance(velocity_of(i), deceleration) <= distance - covered(i - 1)
+        };
+        // m: the number of cycles before the first that brakes.
+        let cycles = if rising == 0 || may(rising) {
+            // Past the rising cycles, every cycle goes at V while T(V) fits.
+            let room =
+                distance - covered(rising) - Self::stopping_distance(max_velocity, deceleration);
+            if room < 0 {
+                rising
+            } else {
+                rising + 1 + (room / max_wide) as u64
+            }
+        } else {
+            // may(0) holds by convention, may(rising) does not: bisect.
+            let (mut low, mut high) = (0u64, rising);
+            while high - low > 1 {
+                let middle = low + (high - low) / 2;
+                if may(middle) {
+                    low = middle;
+                } else {
+                    high = middle;
+                }
+            }
+            low
+        };
+        let last = if cycles == 0 {
+            velocity
+        } else {
+            velocity_of(cycles)
+        };
+        let left = distance - covered(cycles);
+        let braking = Self::braking_velocity(left, deceleration);
+        self.plan = Plan {
+            stage: Stage::Accelerate,
+            cruise: cycles - cycles.min(rising),
+            braking: (braking >= last - deceleration).then(|| Braking {
+                velocity: braking,
+                // < q + 1 ≤ 2^40 (the braking velocity is the largest that fits).
+                leftover: (left - Self::stopping_distance(braking, deceleration)) as u64,
+                segment: braking as u64 / deceleration as u64,
+            }),
+        };
+        self.phase = Phase::Run;
+        self.set_run(base + acceleration, acceleration, cycles.min(rising));
+    }
+
+    fn set_run(&mut self, next: i64, increment: i64, count: u64) {
+        self.next = next;
+        self.increment = increment;
+        self.count = count;
+        if count == 0 {
+            self.end_of_run();
+        }
+    }
+
+    /// The last cycle of a run, at `velocity` ahead: the next run set up, then the cycle.
+    #[cold]
+    #[inline(never)]
+    fn last_of_run(&mut self, velocity: i64) -> State {
+        self.end_of_run();
+        let velocity = (velocity ^ self.sign) - self.sign;
+        advance(&mut self.state, I32F32::from_bits(velocity))
+    }
+
+    /// The next run of the plan, once the present one is over (a few times per move).
+    #[cold]
+    #[inline(never)]
+    fn end_of_run(&mut self) {
+        let deceleration = self.profile.deceleration;
+        match self.plan.stage {
+            Stage::Accelerate => {
+                self.plan.stage = Stage::Cruise;
+                self.set_run(self.profile.max_velocity, 0, self.plan.cruise);
+            }
+            Stage::Cruise => match self.plan.braking {
+                Some(braking) => {
+                    self.plan.stage = Stage::Brake;
+                    // The first braking velocity, then D less for as long as the leftover is
+                    // below the segment's slope: segment − leftover cycles.
+                    let count = 1 + (braking.segment - braking.leftover);
+                    self.set_run(braking.velocity, -deceleration, count);
+                }
+                // Too fast to stop on the destination within D: decide cycle by cycle.
+                None => self.phase = Phase::Decide,
+            },
+            Stage::Brake => {
+                let Some(braking) = self.plan.braking else {
+                    unreachable!("a braking run has its braking")
+                };
+                // The last velocity of the run lies in segment `leftover` (its segment fell by
+                // one every cycle), whose slope from the next velocity down is `leftover`.
+                let last = self.next - self.increment;
+                if braking.leftover == 0 {
+                    self.plan.stage = Stage::Arrive;
+                    self.set_run(0, 0, 1);
+                } else {
+                    // The leftover buys exactly one unit: the next velocity is one unit above
+                    // last − D, in segment leftover − 1, or in segment leftover if that unit
+                    // reaches the segment's start (last's offset in its segment is D − 1).
+                    let offset = last as u64 - braking.leftover * deceleration as u64;
+                    let segment =
+                        braking.leftover - 1 + u64::from(offset + 1 == deceleration as u64);
+                    self.plan.stage = Stage::Bump;
+                    self.set_run(last - deceleration + 1, -deceleration, 1 + segment);
+                }
+            }
+            Stage::Bump => {
+                self.plan.stage = Stage::Arrive;
+                self.set_run(0, 0, 1);
+            }
+            Stage::Arrive => self.rest(),
+        }
+    }
+
+    /// At rest on the destination: a run at velocity zero that never ends (2^64 cycles), so
+    /// resting cycles take the common path too (the state stays `State::at_rest`).
+    fn rest(&mut self) {
+        self.plan.stage = Stage::Arrive;
+        self.phase = Phase::Run;
+        self.next = 0;
+        self.increment = 0;
+        self.count = u64::MAX;
+    }
+
+    /// Every cycle that is not a run of the plan: deciding from scratch, stopping.
+    #[cold]
+    #[inline(never)]
+    fn step_otherwise(&mut self) -> State {
+        let velocity = self.state.velocity.to_bits();
+        let next = match self.phase {
+            Phase::Run => unreachable!("runs step in `step`"),
+            Phase::Decide => {
+                let (distance, sign) = self.ahead();
+                let ahead = i128::from(distance) * i128::from(sign | 1);
+                let next = (self.decide_ahead(ahead, (velocity ^ sign) - sign) ^ sign) - sign;
+                self.state = self.state.advanced(I32F32::from_bits(next));
+                self.plan();
+                return self.state;
+            }
+            Phase::AbruptPending { resume } => {
+                self.phase = Phase::Stopped;
+                let state = self.state.advanced(I32F32::ZERO);
+                self.state = state;
+                self.abrupt_state = Some(state);
+                if resume {
+                    self.plan();
+                }
+                return state;
+            }
+            Phase::Stopped => 0,
+            Phase::Stopping => {
                 let deceleration = self.profile.deceleration;
                 let next = if velocity > 0 {
                     (velocity - deceleration).max(0)
@@ -384,30 +668,33 @@ impl ProfileGenerator for Trapezoidal {
                     (velocity + deceleration).min(0)
                 };
                 if next == 0 {
-                    self.mode = Mode::Stopped;
+                    self.phase = Phase::Stopped;
                 }
                 next
             }
-            Mode::Move => {
-                // The signed distance to go, modulo the 32-bit position register: the move goes
-                // the short way round, as on the chip (exact for every |distance| < 2^31 counts).
-                let distance = self.destination.wrapping_sub(self.state.position.to_bits());
-                if distance == 0 && velocity == 0 {
-                    self.state = State::at_rest(self.state.position);
-                    return self.state;
-                }
-                // Work in the frame where the destination lies ahead.
-                let direction: i64 = if distance != 0 {
-                    distance.signum()
-                } else {
-                    velocity.signum()
-                };
-                let ahead = i128::from(distance) * i128::from(direction);
-                direction * self.next_velocity_ahead(ahead, velocity * direction)
-            }
         };
-        self.state = self.state.advanced(I32F32::from_bits(next));
-        self.state
+        let state = self.state.advanced(I32F32::from_bits(next));
+        self.state = state;
+        state
+    }
+}
+
+impl ProfileGenerator for Trapezoidal {
+    #[inline]
+    fn step(&mut self) -> State {
+        if self.phase != Phase::Run {
+            return self.step_otherwise();
+        }
+        let velocity = self.next;
+        // Every velocity of a run lies between 0 and the maximum velocity: no overflow.
+        self.next = velocity + self.increment;
+        self.count -= 1;
+        if self.count == 0 {
+            // A call that returns the state, so the common path saves no registers.
+            return self.last_of_run(velocity);
+        }
+        let velocity = (velocity ^ self.sign) - self.sign;
+        advance(&mut self.state, I32F32::from_bits(velocity))
     }
 
     fn state(&self) -> State {
@@ -416,30 +703,42 @@ impl ProfileGenerator for Trapezoidal {
 
     fn is_complete(&self) -> bool {
         self.state.velocity == I32F32::ZERO
-            && match self.mode {
-                Mode::Move => self.destination == self.state.position.to_bits(),
-                Mode::Stopped => true,
-                Mode::Stopping | Mode::AbruptPending { .. } => false,
+            && match self.phase {
+                Phase::Run | Phase::Decide => self.destination == self.state.position.to_bits(),
+                Phase::Stopped => true,
+                Phase::Stopping | Phase::AbruptPending { .. } => false,
             }
     }
 
     fn stop(&mut self, kind: StopKind) {
-        self.mode = match (kind, self.mode) {
-            (StopKind::Smooth, Mode::AbruptPending { .. }) | (StopKind::Abrupt, _) => {
-                Mode::AbruptPending { resume: false }
+        self.phase = match (kind, self.phase) {
+            (StopKind::Smooth, Phase::AbruptPending { .. }) | (StopKind::Abrupt, _) => {
+                Phase::AbruptPending { resume: false }
             }
-            (StopKind::Smooth, _) => Mode::Stopping,
+            (StopKind::Smooth, _) => Phase::Stopping,
         };
     }
 
+    /// Derived from the present state, not kept by stepping: the velocity before the last cycle
+    /// is `velocity − acceleration` (SPEC §5).
     fn limits(&self) -> Limits {
+        let before = self.state.velocity.to_bits() - self.state.acceleration.to_bits();
+        // From rest the speed-up may include the jump to the starting velocity.
+        let speed_up = if before == 0 {
+            self.profile.acceleration + self.profile.start_velocity
+        } else {
+            self.profile.acceleration
+        };
         Limits {
-            max_velocity: Some(I32F32::from_bits(self.last_velocity_bound)),
-            max_speed_up: Some(I32F32::from_bits(self.last_speed_up)),
+            // A lowered maximum is reached by decelerating at D, from the velocity before.
+            max_velocity: Some(I32F32::from_bits(
+                self.profile.max_velocity.max(before.abs()),
+            )),
+            max_speed_up: Some(I32F32::from_bits(speed_up)),
             max_slow_down: Some(I32F32::from_bits(self.profile.deceleration)),
             max_acceleration: None,
             max_jerk: None,
-            exempt: self.last_was_abrupt,
+            exempt: self.abrupt_state == Some(self.state),
         }
     }
 }

@@ -3,7 +3,7 @@
 use fixed::types::I32F32;
 
 use crate::format::juno::{Acceleration, TargetVelocity};
-use crate::state::{Limits, ProfileGenerator, State, StopKind};
+use crate::state::{advance, Limits, ProfileGenerator, State, StopKind};
 use crate::Error;
 
 /// The profile parameters of velocity contouring, in Juno register formats.
@@ -52,8 +52,10 @@ pub struct VelocityContouring {
     state: State,
     /// An abrupt stop waits for the next cycle.
     abrupt_pending: bool,
-    /// The last cycle was an abrupt stop (reported by [`ProfileGenerator::limits`]).
-    last_was_abrupt: bool,
+    /// The state the last abrupt stop produced, until a command: while the generator still
+    /// shows it, its last cycle was that stop (for [`ProfileGenerator::limits`], so that stepping
+    /// keeps no bookkeeping of its own).
+    abrupt_state: Option<State>,
 }
 
 /// The 16.16 velocity register as I32F32 bits.
@@ -99,7 +101,7 @@ impl VelocityContouring {
             deceleration_register: parameters.deceleration,
             state: State::at_rest(position),
             abrupt_pending: false,
-            last_was_abrupt: false,
+            abrupt_state: None,
         };
         generator.resolve_deceleration();
         Ok(generator)
@@ -108,6 +110,7 @@ impl VelocityContouring {
     /// Sets the target velocity; applies from the next cycle.
     pub fn set_velocity(&mut self, velocity: TargetVelocity) {
         self.target_velocity = velocity_bits(velocity);
+        self.abrupt_state = None;
     }
 
     /// Sets the acceleration; applies from the next cycle.
@@ -140,6 +143,16 @@ impl VelocityContouring {
         }
     }
 
+    /// The cycle of an abrupt stop, off the per-cycle path: velocity zero, position held.
+    #[cold]
+    fn abrupt_stop(&mut self) -> State {
+        self.abrupt_pending = false;
+        let state = self.state.advanced(I32F32::ZERO);
+        self.state = state;
+        self.abrupt_state = Some(state);
+        state
+    }
+
     fn resolve_deceleration(&mut self) {
         self.deceleration = if self.deceleration_register.is_zero() {
             self.acceleration
@@ -152,31 +165,32 @@ impl VelocityContouring {
 impl ProfileGenerator for VelocityContouring {
     #[inline]
     fn step(&mut self) -> State {
+        if self.abrupt_pending {
+            return self.abrupt_stop();
+        }
         let velocity = self.state.velocity.to_bits();
-        self.last_was_abrupt = self.abrupt_pending;
-        let next = if self.abrupt_pending {
-            self.abrupt_pending = false;
-            0
-        } else {
-            let target = self.target_velocity;
-            // Moving toward zero: the target is smaller with the same sign, or of the other sign
-            // (zero included). That cycle, even if it crosses zero, is taken at the deceleration.
-            let toward_zero = velocity != 0
-                && (target.signum() != velocity.signum() || target.abs() < velocity.abs());
-            let rate = if toward_zero {
+        let target = self.target_velocity;
+        // Toward zero, the rate is the deceleration: the velocity moves against its own sign.
+        // That is the target being smaller with the same sign, or of the other sign (zero
+        // included), and it covers the cycle that reaches or crosses zero. So going up, D while
+        // the velocity is negative; going down, D while it is positive. |velocity| < 2^47 and
+        // rate < 2^39: no overflow, and never past the target.
+        let next = if target > velocity {
+            let rate = if velocity < 0 {
                 self.deceleration
             } else {
                 self.acceleration
             };
-            // Never past the target. |velocity| < 2^47 and rate < 2^39: no overflow.
-            if target > velocity {
-                (velocity + rate).min(target)
+            (velocity + rate).min(target)
+        } else {
+            let rate = if velocity > 0 {
+                self.deceleration
             } else {
-                (velocity - rate).max(target)
-            }
+                self.acceleration
+            };
+            (velocity - rate).max(target)
         };
-        self.state = self.state.advanced(I32F32::from_bits(next));
-        self.state
+        advance(&mut self.state, I32F32::from_bits(next))
     }
 
     fn state(&self) -> State {
@@ -203,7 +217,7 @@ impl ProfileGenerator for VelocityContouring {
             max_slow_down: Some(I32F32::from_bits(self.deceleration)),
             max_acceleration: None,
             max_jerk: None,
-            exempt: self.last_was_abrupt,
+            exempt: self.abrupt_state == Some(self.state),
         }
     }
 }

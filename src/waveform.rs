@@ -156,47 +156,70 @@ impl MicrostepTable {
         self.current
     }
 
-    /// The full-scale entry `round(32767 · cos(2π·step/M))`, by quarter-wave symmetry from the
-    /// quarter table: exact, so the symmetry is too.
-    fn full_scale(&self, step: u32) -> i16 {
-        let index = (step % self.cycle) * self.stride;
+    /// The full-scale entry `round(32767 · cos(2π·index/3072))` for a table index below 2·3072,
+    /// by quarter-wave symmetry from the quarter table: exact, so the symmetry is too. The
+    /// divisors are constants (the compiler multiplies by their reciprocals): no division.
+    #[inline(always)]
+    fn full_scale(index: u32) -> i16 {
+        let index = if index >= TABLE_STEPS {
+            index - TABLE_STEPS
+        } else {
+            index
+        };
         let quadrant = index / TABLE_QUARTER;
-        let offset = index % TABLE_QUARTER;
-        match quadrant {
-            0 => QUARTER_COSINE[offset as usize],
-            1 => -QUARTER_COSINE[(TABLE_QUARTER - offset) as usize],
-            2 => -QUARTER_COSINE[offset as usize],
-            _ => QUARTER_COSINE[(TABLE_QUARTER - offset) as usize],
+        let offset = index - quadrant * TABLE_QUARTER;
+        // Quadrants 1 and 3 run the quarter backwards; 1 and 2 are negative.
+        let entry = if quadrant & 1 == 0 {
+            QUARTER_COSINE[offset as usize]
+        } else {
+            QUARTER_COSINE[(TABLE_QUARTER - offset) as usize]
+        };
+        if (quadrant + 1) & 2 == 0 {
+            entry
+        } else {
+            -entry
         }
     }
 
     /// Scales a full-scale entry by the motor command: `round(C · entry / 32767)`, ties away from
     /// zero, in integers (|C · entry| < 2^30, so i32 holds it). Each scaled output is within
     /// 1 LSB of `C · cos(…)`: the entry errs by ≤ 0.5, scaled by C/32767 ≤ 1, plus ≤ 0.5 of
-    /// rounding.
+    /// rounding. The divisor is a constant: a multiplication by its reciprocal, not a division.
+    #[inline(always)]
     fn scaled(&self, entry: i16) -> i16 {
         let product = i32::from(self.current) * i32::from(entry);
         let full = i32::from(FULL_SCALE);
         // Round half away from zero: (2|x| + d) / 2d, truncating, then the sign back.
-        let magnitude = (2 * product.abs() + full) / (2 * full);
-        (product.signum() * magnitude) as i16
+        let magnitude = (2 * product.unsigned_abs() + full as u32) / (2 * full as u32);
+        if product < 0 {
+            -(magnitude as i16)
+        } else {
+            magnitude as i16
+        }
     }
 
     /// The phase outputs at a signed microstep position (any i32: negative and wrapping
-    /// positions are reduced modulo the electrical cycle). Constant time, no allocation.
+    /// positions are reduced modulo the electrical cycle). Constant time, no allocation, no
+    /// division.
     ///
     /// A 3-phase cycle (6N) does not divide 2^32, so a position register that wraps jumps in
     /// electrical angle at the wrap; 2-phase cycles (4N, a power of two) wrap seamlessly.
     pub fn outputs(&self, microstep: i32) -> PhaseOutputs {
-        let step = i64::from(microstep).rem_euclid(i64::from(self.cycle)) as u32;
-        let mut values = [0i16; 3];
-        for (i, value) in values.iter_mut().enumerate().take(self.phases.count()) {
-            // Phase i lags by i·φ: cos(2πk/M − i·φ) = cos(2π(k − i·shift)/M).
-            let shifted = step + self.cycle * 2 - i as u32 * self.phase_shift;
-            *value = self.scaled(self.full_scale(shifted));
-        }
+        // The position in table steps modulo the 3072 of an electrical cycle: (microstep mod M)
+        // · stride = (microstep · stride) mod (M · stride), M · stride = 3072, a constant
+        // divisor. |microstep · stride| < 2^31 · 3072 < 2^43: i64.
+        let index = (i64::from(microstep) * i64::from(self.stride)).rem_euclid(3072) as u32;
+        // Phase i lags by i·φ: cos(2π(k − i·shift)/M); in table steps, k·stride − i·φ_t, kept
+        // non-negative by adding one cycle (φ_t ≤ 1024, i ≤ 2), and below 2·3072.
+        let lag = self.phase_shift * self.stride;
+        let a = self.scaled(Self::full_scale(index));
+        let b = self.scaled(Self::full_scale(index + TABLE_STEPS - lag));
+        let c = match self.phases {
+            Phases::Two => 0,
+            Phases::Three => self.scaled(Self::full_scale(index + TABLE_STEPS - 2 * lag)),
+        };
         PhaseOutputs {
-            values,
+            values: [a, b, c],
             phases: self.phases,
         }
     }

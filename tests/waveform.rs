@@ -191,3 +191,46 @@ proptest! {
         }
     }
 }
+
+/// The scaling of the previous implementation (before issue #12): `round(C · entry / 32767)`, ties
+/// away from zero, by an integer division of the magnitude.
+fn previous_scaled(current: u16, entry: i16) -> i16 {
+    let product = i32::from(current) * i32::from(entry);
+    let magnitude = (2 * product.abs() + 32767) / (2 * 32767);
+    (product.signum() * magnitude) as i16
+}
+
+/// The division-free lookup gives the previous lookup's outputs: for every resolution, both phase
+/// counts, every microstep of the cycle and every motor command, each phase equals the previous
+/// formula applied to the correctly rounded full-scale entry (which `every_entry_is_correctly_rounded`
+/// shows the table holds).
+#[test]
+fn same_outputs_as_the_previous_formula() {
+    for phases in [Phases::Two, Phases::Three] {
+        for n in RESOLUTIONS {
+            let full = MicrostepTable::new(n, phases).unwrap();
+            let cycle = full.microsteps_per_cycle();
+            let entries: Vec<Vec<i16>> = (0..cycle)
+                .map(|k| {
+                    (0..phases.count())
+                        .map(|i| reference(k, cycle, i, phases).1)
+                        .collect()
+                })
+                .collect();
+            // Every command for the coarse tables, every 7th (and the ends) for the fine ones.
+            let step = if n <= 16 { 1 } else { 7 };
+            for current in (0..=32767u16).step_by(step).chain([32767]) {
+                let table = full.with_current(current).unwrap();
+                for (k, entry) in entries.iter().enumerate() {
+                    let expected: Vec<i16> =
+                        entry.iter().map(|&e| previous_scaled(current, e)).collect();
+                    assert_eq!(
+                        table.outputs(k as i32).as_slice(),
+                        &expected[..],
+                        "N = {n}, {phases:?}, microstep {k}, current {current}"
+                    );
+                }
+            }
+        }
+    }
+}

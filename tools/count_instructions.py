@@ -434,6 +434,59 @@ def step_move(probe: Probe, move: tuple[int, int, int, int], rest_cycles: int,
     return total + rest_cycles
 
 
+# The other generators ------------------------------------------------------------------------------
+
+# Velocity contouring: the bench move (100 counts/cycle at 0.25 counts/cycle², D = A) and a
+# reversal (-100 at 0.25 up, 0.125 down), raw Juno bits (16.16, 8.24).
+FIXED_VELOCITY_MOVES = ((100 << 16, 1 << 22, 0), (-(100 << 16), 1 << 22, 1 << 21))
+# The trapezoid's bench move: 1,000,000 counts at 100 counts/cycle, 0.25 counts/cycle², D = A.
+FIXED_TRAPEZOID_MOVE = (1_000_000, 100 << 16, 1 << 22, 0, 0)
+
+
+def random_trapezoid_moves(n: int, seed: int = 12) -> list[tuple[int, int, int, int, int]]:
+    """Deterministic moves from rest, each at most ~3,000 cycles long: a distance log-uniform in
+    1 .. 10^6 counts (either sign), the velocity and rates log-uniform above the bounds that keep
+    the move short, a separate deceleration 2/3 of the time, a starting velocity 1/3 of the time."""
+    import math
+    import random
+    rng = random.Random(seed)
+    log_uniform = lambda low, high: int(math.exp(rng.uniform(math.log(low), math.log(high))))
+    moves = []
+    for _ in range(n):
+        distance = log_uniform(1, 1_000_000)
+        velocity = log_uniform(max(1, distance * 65536 // 1000), 2**31 - 1)
+        min_rate = max(1, 4 * distance * 2**24 // 1000**2)
+        acceleration = log_uniform(min_rate, 2**31 - 1)
+        deceleration = 0 if rng.random() < 1 / 3 else log_uniform(min_rate, 2**31 - 1)
+        start = int(velocity * rng.random()) if rng.random() < 1 / 3 else 0
+        moves.append((distance if rng.random() < 0.5 else -distance, velocity, acceleration, deceleration, start))
+    return moves
+
+
+def measure_other_generators(probe: Probe, moves: int) -> tuple[dict[str, list[int]], list[int]]:
+    """Per-cycle counts of VelocityContouring and Trapezoidal, and the trapezoid's set-up counts."""
+    steps: dict[str, list[int]] = {"VelocityContouring": [], "Trapezoidal": []}
+    for velocity, acceleration, deceleration in FIXED_VELOCITY_MOVES:
+        if probe.call("probe_velocity_setup", velocity & 0xFFFF_FFFF, acceleration, deceleration).r0:
+            raise ProbeFailure("velocity move refused")
+        steps["VelocityContouring"] += [probe.call("probe_velocity_step").instructions for _ in range(2_000)]
+    setups = []
+    for move in [FIXED_TRAPEZOID_MOVE] + random_trapezoid_moves(moves):
+        probe.uc.mem_write(SCRATCH_PAGE, struct.pack("<5I", *(w & 0xFFFF_FFFF for w in move)))
+        setup = probe.call("probe_trapezoid_setup", SCRATCH_PAGE)
+        if setup.r0:
+            raise ProbeFailure(f"trapezoid move refused: {move}")
+        setups.append(setup.instructions)
+        for cycle in range(20_000):
+            steps["Trapezoidal"].append(probe.call("probe_trapezoid_step").instructions)
+            if probe.call("probe_trapezoid_complete").r0:
+                break
+        else:
+            raise ProbeFailure(f"trapezoid move {move} did not arrive in 20,000 cycles")
+        steps["Trapezoidal"] += [probe.call("probe_trapezoid_step").instructions for _ in range(2)]
+    return steps, setups
+
+
 # Verification ------------------------------------------------------------------------------------
 
 
@@ -499,6 +552,10 @@ def main() -> int:
                         help="first check the block-based count against a per-instruction count")
     parser.add_argument("--verify-moves", type=int, default=3, help="plans checked by --verify (default 3)")
     parser.add_argument("--verify-steps", type=int, default=2000, help="steps checked by --verify (default 2000)")
+    parser.add_argument("--trapezoid-step-budget", type=int,
+                        help="fail when any Trapezoidal step executes more instructions (default: --step-budget)")
+    parser.add_argument("--trapezoid-moves", type=int, default=200,
+                        help="random trapezoid moves stepped to the end (default %(default)s)")
     parser.add_argument("--functions", type=int, default=8,
                         help="functions listed for the worst plan (default %(default)s)")
     parser.add_argument("--top", type=int, default=5, help="the most expensive plans listed (default 5)")
@@ -563,6 +620,14 @@ def main() -> int:
               f"{describe_move(worst_step['move'])}")
         print(f"  stack: {worst_step['stack']} bytes at most (one step)")
         print(f"  ({time.monotonic() - stepping_started:.1f} s)")
+        print(f"== the other generators, one call per cycle (the bench moves and {args.trapezoid_moves} "
+              "random trapezoid moves from rest, each to its end)")
+        others, setups = measure_other_generators(probe, args.trapezoid_moves)
+        for name, counts_ in others.items():
+            print(f"  {name:26} max {max(counts_):4}, mean {statistics.fmean(counts_):6.1f} instructions "
+                  f"({len(counts_)} cycles)")
+        print(f"  {'Trapezoid set-up (plans)':26} max {max(setups):4}, mean {statistics.fmean(setups):6.1f} "
+              f"instructions ({len(setups)} moves; reported, not budgeted here)")
     except ProbeFailure as failure:
         print(f"error: the probe failed: {failure}", file=sys.stderr)
         return 2
@@ -582,7 +647,16 @@ def main() -> int:
         return True
 
     planning_ok = within("planning", counts, args.plan_budget, f" (move {worst[0]})", "moves")
-    stepping_ok = within("one step", all_steps, args.step_budget, "", "cycles")
+    stepping_ok = within("one step of SCurve", all_steps, args.step_budget, "", "cycles")
+    for name, counts_ in others.items():
+        budget = args.step_budget
+        if name == "Trapezoidal" and args.trapezoid_step_budget is not None:
+            budget = args.trapezoid_step_budget
+            if args.step_budget is not None:
+                over = sum(1 for n in counts_ if n > args.step_budget)
+                print(f"note: {over} of {len(counts_)} Trapezoidal steps exceed {args.step_budget} instructions "
+                      "(the cycles that end a run of the plan and set up the next)")
+        stepping_ok &= within(f"one step of {name}", counts_, budget, "", "cycles")
     status = 0 if planning_ok and stepping_ok else 1
     return status
 

@@ -11,6 +11,11 @@
 //! - `probe_plan(index)`: the same for move `index`, the move generated on the target too.
 //! - `probe_step_setup(...)`, `probe_phases(out)`, `probe_step()`: one generator in a static,
 //!   stepped one cycle per call, so every cycle's cost is measured on its own.
+//! - `probe_velocity_setup(velocity, acceleration, deceleration)`, `probe_velocity_step()`:
+//!   the same for `VelocityContouring` (Juno registers as raw bits).
+//! - `probe_trapezoid_setup(words)` (destination, maximum velocity, acceleration, deceleration,
+//!   starting velocity as raw bits), `probe_trapezoid_step()`, `probe_trapezoid_complete()`:
+//!   the same for `Trapezoidal`; the setup is the measured "starting a move" (it plans).
 //! - `probe_selftest_panic(1)`, `probe_selftest_runaway()`: a panic and an endless loop, so the
 //!   harness can check that it catches both.
 #![no_std]
@@ -23,7 +28,11 @@ use core::panic::PanicInfo;
 use core::sync::atomic::{AtomicU32, Ordering};
 
 use profilegen::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
-use profilegen::{Error, ProfileGenerator, SCurve, ScurveParameters};
+use profilegen::format::juno::{Acceleration, TargetVelocity};
+use profilegen::{
+    Error, ProfileGenerator, SCurve, ScurveParameters, Trapezoidal, TrapezoidalParameters,
+    VelocityContouring, VelocityParameters,
+};
 
 #[path = "../../benches/common/moves.rs"]
 mod moves;
@@ -149,6 +158,98 @@ pub unsafe extern "C" fn probe_step() -> i64 {
     // SAFETY: initialized by probe_step_setup (the caller's contract); single-threaded.
     let axis = unsafe { (*AXIS.0.get()).assume_init_mut() };
     axis.step().position.to_bits()
+}
+
+/// A generator slot like [`AXIS`], for the other generators.
+struct Other<T>(UnsafeCell<MaybeUninit<T>>);
+
+// SAFETY: as for `Slot`.
+unsafe impl<T> Sync for Other<T> {}
+
+static VELOCITY: Other<VelocityContouring> = Other(UnsafeCell::new(MaybeUninit::uninit()));
+static TRAPEZOID: Other<Trapezoidal> = Other(UnsafeCell::new(MaybeUninit::uninit()));
+
+/// Sets up the stepped velocity-contouring generator from raw Juno registers; 0 on success,
+/// 1 when refused.
+#[no_mangle]
+pub extern "C" fn probe_velocity_setup(velocity: i32, acceleration: u32, deceleration: u32) -> u32 {
+    let parameters = || -> Result<VelocityContouring, Error> {
+        VelocityContouring::new(VelocityParameters {
+            velocity: TargetVelocity::from_bits(velocity)?,
+            acceleration: Acceleration::from_bits(acceleration)?,
+            deceleration: Acceleration::from_bits(deceleration)?,
+        })
+    };
+    match parameters() {
+        Ok(axis) => {
+            // SAFETY: single-threaded; no reference to the slot outlives a call.
+            unsafe { (*VELOCITY.0.get()).write(axis) };
+            0
+        }
+        Err(_) => 1,
+    }
+}
+
+/// Advances the stepped velocity-contouring generator one cycle; returns the new position.
+///
+/// # Safety
+/// `probe_velocity_setup` succeeded before.
+#[no_mangle]
+pub unsafe extern "C" fn probe_velocity_step() -> i64 {
+    // SAFETY: initialized by probe_velocity_setup (the caller's contract); single-threaded.
+    let axis = unsafe { (*VELOCITY.0.get()).assume_init_mut() };
+    axis.step().position.to_bits()
+}
+
+/// Sets up the stepped trapezoid from `words[0..5]`: destination, maximum velocity (16.16),
+/// acceleration and deceleration (8.24), starting velocity (16.16), raw bits; 0 on success, 1
+/// when refused. The measured "starting a move": validation and the plan.
+///
+/// # Safety
+/// `words` points to 5 readable, aligned words.
+#[no_mangle]
+pub unsafe extern "C" fn probe_trapezoid_setup(words: *const u32) -> u32 {
+    // SAFETY: the caller provides 5 words.
+    let word = |i: usize| unsafe { words.add(i).read() };
+    let parameters = || -> Result<Trapezoidal, Error> {
+        Trapezoidal::new(TrapezoidalParameters {
+            destination: word(0) as i32,
+            max_velocity: TargetVelocity::from_bits(word(1) as i32)?,
+            acceleration: Acceleration::from_bits(word(2))?,
+            deceleration: Acceleration::from_bits(word(3))?,
+            start_velocity: TargetVelocity::from_bits(word(4) as i32)?,
+        })
+    };
+    match parameters() {
+        Ok(axis) => {
+            // SAFETY: single-threaded; no reference to the slot outlives a call.
+            unsafe { (*TRAPEZOID.0.get()).write(axis) };
+            0
+        }
+        Err(_) => 1,
+    }
+}
+
+/// Advances the stepped trapezoid one cycle; returns the new position.
+///
+/// # Safety
+/// `probe_trapezoid_setup` succeeded before.
+#[no_mangle]
+pub unsafe extern "C" fn probe_trapezoid_step() -> i64 {
+    // SAFETY: initialized by probe_trapezoid_setup (the caller's contract); single-threaded.
+    let axis = unsafe { (*TRAPEZOID.0.get()).assume_init_mut() };
+    axis.step().position.to_bits()
+}
+
+/// 1 when the stepped trapezoid is complete, else 0.
+///
+/// # Safety
+/// `probe_trapezoid_setup` succeeded before.
+#[no_mangle]
+pub unsafe extern "C" fn probe_trapezoid_complete() -> u32 {
+    // SAFETY: initialized by probe_trapezoid_setup (the caller's contract); single-threaded.
+    let axis = unsafe { (*TRAPEZOID.0.get()).assume_init_ref() };
+    u32::from(axis.is_complete())
 }
 
 /// Panics when `panic` is non-zero: the harness's check that a panic is caught and located.

@@ -1,0 +1,160 @@
+//! Issue #12 rewrote the stepping of `VelocityContouring` and `Trapezoidal` for speed (the
+//! trapezoid now plans the cycles between commands and brakes incrementally instead of deciding
+//! every cycle with a square root and divisions). These tests step each new generator beside its
+//! previous implementation (`tests/previous/`, kept as it was at commit abfda4b) over random moves
+//! with random commands in motion, and require the same state on every cycle, bit for bit.
+
+mod previous;
+mod strategies;
+
+use previous::trapezoidal::PreviousTrapezoidal;
+use previous::velocity::PreviousVelocity;
+use profilegen::format::juno::{Acceleration, TargetVelocity};
+use profilegen::{ProfileGenerator, Trapezoidal, TrapezoidalParameters, VelocityContouring};
+use proptest::prelude::*;
+use strategies::{
+    juno_deceleration, juno_rate, log_uniform, trapezoidal_move, velocity_script, VelocityCommand,
+};
+
+/// A command given to both trapezoids in motion.
+#[derive(Debug, Clone, Copy)]
+enum Command {
+    Destination(i32),
+    MaxVelocity(TargetVelocity),
+    Acceleration(Acceleration),
+    Deceleration(Acceleration),
+    StartVelocity(TargetVelocity),
+    Stop(profilegen::StopKind),
+}
+
+/// Commands across the register ranges (destinations within ±2^31 counts of anything, any
+/// velocity and rate), so that reversals, lowered maxima and late braking all happen.
+fn command() -> impl Strategy<Value = Command> {
+    let velocity = || {
+        log_uniform(i32::MAX as u64)
+            .prop_map(|bits| TargetVelocity::from_bits(bits as i32).unwrap())
+    };
+    prop_oneof![
+        4 => prop_oneof![any::<i32>(), -1_000_000i32..1_000_000, -1_000i32..1_000]
+            .prop_map(Command::Destination),
+        2 => velocity().prop_map(Command::MaxVelocity),
+        2 => juno_rate().prop_map(Command::Acceleration),
+        2 => juno_deceleration().prop_map(Command::Deceleration),
+        1 => velocity().prop_map(Command::StartVelocity),
+        1 => Just(Command::Stop(profilegen::StopKind::Smooth)),
+        1 => Just(Command::Stop(profilegen::StopKind::Abrupt)),
+    ]
+}
+
+/// Gives `command` to both; a refused one (a starting velocity above the maximum) is refused
+/// by the new generator and not given to the previous one.
+fn give(new: &mut Trapezoidal, old: &mut PreviousTrapezoidal, command: Command) {
+    let parameters = new.parameters();
+    match command {
+        Command::Destination(d) => {
+            new.set_destination(d);
+            old.set_destination(d);
+        }
+        Command::MaxVelocity(v) => {
+            if new.set_max_velocity(v).is_ok() {
+                old.set_parameters(TrapezoidalParameters {
+                    max_velocity: v,
+                    ..old.parameters()
+                });
+            }
+        }
+        Command::Acceleration(a) => {
+            new.set_acceleration(a).unwrap();
+            old.change(TrapezoidalParameters {
+                acceleration: a,
+                ..old.parameters()
+            });
+        }
+        Command::Deceleration(d) => {
+            new.set_deceleration(d);
+            old.change(TrapezoidalParameters {
+                deceleration: d,
+                ..old.parameters()
+            });
+        }
+        Command::StartVelocity(s) => {
+            if new.set_start_velocity(s).is_ok() {
+                old.change(TrapezoidalParameters {
+                    start_velocity: s,
+                    ..old.parameters()
+                });
+            }
+        }
+        Command::Stop(kind) => {
+            new.stop(kind);
+            old.stop(kind);
+        }
+    }
+    let _ = parameters;
+}
+
+/// Steps both `cycles` times (or until both are complete and stay so), comparing every state.
+fn compare(
+    new: &mut Trapezoidal,
+    old: &mut PreviousTrapezoidal,
+    cycles: u64,
+) -> Result<(), TestCaseError> {
+    for cycle in 0..cycles {
+        let (a, b) = (new.step(), old.step());
+        prop_assert_eq!(a, b, "cycle {} after the last command", cycle);
+        prop_assert_eq!(new.is_complete(), old.is_complete(), "cycle {}", cycle);
+        if new.is_complete() {
+            // Both at rest: one more cycle shows they stay so, and the rest is the same.
+            prop_assert_eq!(new.step(), old.step());
+            break;
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2_000))]
+
+    /// Moves from rest across the register ranges, with the starting velocity, to the end.
+    #[test]
+    fn trapezoid_moves_from_rest(move_ in trapezoidal_move()) {
+        let mut new = Trapezoidal::new(move_).unwrap();
+        let mut old = PreviousTrapezoidal::new(move_);
+        compare(&mut new, &mut old, 1_000_000)?;
+        prop_assert!(new.is_complete(), "arrived");
+    }
+
+    /// The same moves with up to 8 commands at random cycles, then to the end (or 1,000,000
+    /// cycles, for moves a late command made very long).
+    #[test]
+    fn trapezoid_with_commands_in_motion(
+        move_ in trapezoidal_move(),
+        script in prop::collection::vec((0u64..2_000, command()), 1..8),
+    ) {
+        let mut new = Trapezoidal::new(move_).unwrap();
+        let mut old = PreviousTrapezoidal::new(move_);
+        for (gap, command) in script {
+            compare(&mut new, &mut old, gap)?;
+            give(&mut new, &mut old, command);
+        }
+        compare(&mut new, &mut old, 1_000_000)?;
+    }
+
+    /// Velocity contouring with random scripts of commands (the velocity tests' strategy).
+    #[test]
+    fn velocity_contouring(script in velocity_script()) {
+        let mut new = VelocityContouring::new(script.initial).unwrap();
+        let mut old = PreviousVelocity::new(script.initial);
+        for (gap, command) in script.commands.iter().copied().chain([(2_000, VelocityCommand::Stop(profilegen::StopKind::Smooth))]) {
+            for cycle in 0..gap {
+                prop_assert_eq!(new.step(), old.step(), "cycle {}", cycle);
+            }
+            match command {
+                VelocityCommand::Velocity(v) => { new.set_velocity(v); old.set_velocity(v); }
+                VelocityCommand::Acceleration(a) => { new.set_acceleration(a).unwrap(); old.set_acceleration(a); }
+                VelocityCommand::Deceleration(d) => { new.set_deceleration(d); old.set_deceleration(d); }
+                VelocityCommand::Stop(kind) => { new.stop(kind); old.stop(kind); }
+            }
+        }
+    }
+}

@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# The instruction counts of one cycle of every generator, by phase, on x86 and on a Cortex-M4
+# (SPEC §16, issue #12):
+#
+#   tools/instruction_counts.sh            # both tables
+#   tools/instruction_counts.sh --x86      # x86 only (callgrind)
+#
+# x86: examples/step_instructions.rs steps each generator through a window of cycles that all
+# lie in one phase of the bench move (benches/common), calling `step` through a trait object;
+# callgrind counts the instructions inside `step` (callees included) and this divides by the
+# window's cycles. Cortex-M4: tools/cortex_m4_budgets.sh (every cycle of every generator of the
+# probe, counted under an emulator; the call itself included).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+cargo build --quiet --release --example step_instructions
+binary=target/release/examples/step_instructions
+out="${TMPDIR:-/tmp}/profilegen-callgrind.$$"
+trap 'rm -f "$out"' EXIT
+
+echo "== x86 instructions per cycle (callgrind, inside the call; window of cycles of one phase)"
+printf '%-26s %8s %8s %10s\n' window cycles instr/cycle function
+"$binary" --list | while read -r name first last; do
+  cycles=$((last - first + 1))
+  case "$name" in
+    microstep/*) function='profilegen::waveform::MicrostepTable::outputs' ;;
+    velocity/*) function='<profilegen::velocity::VelocityContouring as profilegen::state::ProfileGenerator>::step' ;;
+    trapezoidal/*) function='<profilegen::trapezoidal::Trapezoidal as profilegen::state::ProfileGenerator>::step' ;;
+    scurve/*) function='<profilegen::scurve::SCurve as profilegen::state::ProfileGenerator>::step' ;;
+  esac
+  valgrind --tool=callgrind --callgrind-out-file="$out" --collect-atstart=no \
+    --toggle-collect='step_instructions::measure' --toggle-collect='step_instructions::outputs' \
+    "$binary" "$name" >/dev/null 2>&1
+  # Inclusive instructions of the function, over the window (collected only inside `measure`).
+  total=$(callgrind_annotate --inclusive=yes "$out" 2>/dev/null \
+    | grep -F ":$function [" | head -1 | awk '{gsub(",", "", $1); print $1}')
+  if [ -z "$total" ]; then
+    echo "$name: no count for $function" >&2
+    exit 1
+  fi
+  awk -v n="$name" -v c="$cycles" -v t="$total" -v f="$function" \
+    'BEGIN { printf "%-26s %8d %8.1f   %s\n", n, c, t / c, f }'
+done
+
+if [ "${1:-}" != "--x86" ]; then
+  echo
+  echo "== Cortex-M4 instructions per cycle (emulator, the call included)"
+  tools/cortex_m4_budgets.sh --moves 200 "$@"
+fi
