@@ -2,7 +2,7 @@
 //! its one pass that finds the move's peaks (and confirms its limits).
 
 use super::remainder::{Placement, MAX_NOTCHES};
-use super::shape::MainMove;
+use super::shape::{corners, MainMove};
 use super::ScurvePlan;
 
 /// One change of the sealed replay: the jerk it sets (2^-32 counts/cycle³, the direction of the
@@ -36,21 +36,6 @@ pub(super) struct Limits64 {
     pub acceleration: u64,
     /// Velocity, counts/cycle · 2^32.
     pub velocity: u64,
-}
-
-/// The eight corners of a triple box `tb(a, b, c)`: the cycles where its jerk changes, and by
-/// how much (±1), in the order they come.
-fn corners(a: u64, b: u64, c: u64) -> [(u64, i64); 8] {
-    [
-        (0, 1),
-        (a, -1),
-        (b, -1),
-        (a + b, 1),
-        (c, -1),
-        (c + a, 1),
-        (c + b, 1),
-        (c + a + b, -1),
-    ]
 }
 
 /// What a replay of a sealed schedule does, run by run ([`Schedule::replay`]).

@@ -32,12 +32,13 @@ pub(super) struct Group {
 
 impl Group {
     /// The group's jerk on cycle `n`, raw units: `count` times the unit's ±1 or 0, as the sum of
-    /// the eight steps that make up a triple box (see the module docs).
+    /// its eight corners up to `n` ([`corners`]).
     pub fn jerk_at(&self, n: u64) -> i64 {
-        let (a, b, c) = (self.a, self.b, self.c);
-        let step = |at: u64| i64::from(n >= at);
-        let unit = step(0) - step(a) - step(b) + step(a + b) - step(c) + step(c + a) + step(c + b)
-            - step(a + b + c);
+        let unit: i64 = corners(self.a, self.b, self.c)
+            .iter()
+            .filter(|&&(at, _)| n >= at)
+            .map(|&(_, sign)| sign)
+            .sum();
         unit * self.count as i64
     }
 
@@ -63,6 +64,21 @@ impl Group {
         };
         rise * self.count
     }
+}
+
+/// The eight corners of a triple box `tb(a, b, c)`: the cycles where its jerk changes, and by
+/// how much (±1), in the order they come.
+pub(super) fn corners(a: u64, b: u64, c: u64) -> [(u64, i64); 8] {
+    [
+        (0, 1),
+        (a, -1),
+        (b, -1),
+        (a + b, 1),
+        (c, -1),
+        (c + a, 1),
+        (c + b, 1),
+        (c + a + b, -1),
+    ]
 }
 
 /// At most this many groups: four kinds, each with or without its cruise one cycle shorter, and
