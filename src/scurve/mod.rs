@@ -402,7 +402,7 @@ impl SCurve {
         }
         self.motion = Motion::Planned;
         // The first change is on cycle 0: it is the first step's jerk.
-        let first = self.schedule.change(0);
+        let first = self.schedule.run(0);
         self.jerk = first.jerk;
         self.countdown = first.hold;
         self.next_change = 1;
@@ -437,13 +437,13 @@ impl SCurve {
                 // Only after the first step of a move started right after an abrupt stop: the
                 // correction is taken back, and the replay goes on from the second cycle.
                 self.offset = 0;
-                let first = self.schedule.change(0);
+                let first = self.schedule.run(0);
                 self.jerk = first.jerk;
                 if first.hold > 1 {
                     self.countdown = first.hold - 1;
                     self.next_change = 1;
                 } else {
-                    let second = self.schedule.change(1);
+                    let second = self.schedule.run(1);
                     self.jerk = second.jerk;
                     self.countdown = second.hold;
                     self.next_change = 2;
@@ -511,13 +511,13 @@ impl ProfileGenerator for SCurve {
             // holds. The end marker, the last, sets the jerk to zero and holds for ever; the
             // sentinel, which holds no cycle, sends the event to the slow path.
             let next = self.next_change;
-            let change = self.schedule.change(next);
-            if change.hold != 0 {
-                self.jerk = change.jerk;
-                self.countdown = change.hold;
-                self.next_change = next + 1;
-            } else {
-                self.event();
+            match self.schedule.change(next) {
+                Some(change) => {
+                    self.jerk = change.jerk;
+                    self.countdown = change.hold;
+                    self.next_change = next + 1;
+                }
+                None => self.event(),
             }
         }
         state

@@ -35,6 +35,24 @@ impl Notch {
         [(s, -1), (s + w, 1), (s + k, 1), (s + k + w, -1)]
     }
 
+    /// Its `index`-th change of the jerk (0..8), in order: `(cycle, ±1)`; `(u64::MAX, 0)` past
+    /// the last. Each impulse of [`Self::impulses`] is a jerk of ±1 on one cycle: a change by
+    /// ±1 on it and back on the next. They come in order because `1 ≤ w < k`.
+    pub fn change(&self, index: usize) -> (u64, i32) {
+        let (s, w, k) = (self.start, self.width, self.span);
+        match index {
+            0 => (s, -1),
+            1 => (s + 1, 1),
+            2 => (s + w, 1),
+            3 => (s + w + 1, -1),
+            4 => (s + k, 1),
+            5 => (s + k + 1, -1),
+            6 => (s + k + w, -1),
+            7 => (s + k + w + 1, 1),
+            _ => (u64::MAX, 0),
+        }
+    }
+
     /// The last cycle on which it lowers the velocity.
     fn last_dip(&self) -> u64 {
         self.start + self.span + self.width - 2
@@ -299,16 +317,17 @@ pub(super) fn take(
     // The three placements that take remainders (measured over 100,000 random moves: first notch
     // in phases I–II with the second in the cruise or after phase V, and both in the cruise for
     // single pairs; first in the cruise, second after phase V, never did).
-    for (first_in_cruise, second_in_cruise) in [(false, true), (false, false), (true, true)] {
+    const PLACEMENTS: [(bool, bool); 3] = [(false, true), (false, false), (true, true)];
+    let region = |w: u64, (first_in_cruise, second_in_cruise): (bool, bool)| {
+        let first = firsts(bounds, w, first_in_cruise);
+        let second = seconds(bounds, w, second_in_cruise);
         // A pair's span exceeds its width.
-        let region = |w: u64| {
-            let first = firsts(bounds, w, first_in_cruise);
-            let second = seconds(bounds, w, second_in_cruise);
-            let (low, high) = spans(first, second);
-            (first, second, (low.max(w + 1), high))
-        };
+        let (low, high) = spans(first, second);
+        (first, second, (low.max(w + 1), high))
+    };
+    for placement in PLACEMENTS {
         for width in 1..=2 {
-            let (first, second, range) = region(width);
+            let (first, second, range) = region(width, placement);
             let Some((span, q)) = one_pair(left, width, range, (area, available)) else {
                 continue;
             };
@@ -317,9 +336,10 @@ pub(super) fn take(
             }
         }
         // Two pairs only with the first notch in phases I–II (see above).
-        if first_in_cruise {
+        if placement.0 {
             continue;
         }
+        let region = |w: u64| region(w, placement);
         // The widths whose spans land in the middle of their range: from spans of half
         // the move, refined twice (the range depends a little on the width).
         let refine = |width: u64| {
@@ -349,6 +369,13 @@ pub(super) fn take(
             // w·k₁ + (w + 1)·k₂ with k₁, k₂ in [low, high] has a solution for every value
             // between these (k₁ moves in steps of w + 1, k₂ of w).
             let (w, l, h) = (width, low, high);
+            // Every sum of the two lies in [(2w + 1)·low, (2w + 1)·high]: outside, no q can
+            // help (a quick, exact rejection before any division).
+            let (lowest, highest) = ((2 * w + 1).saturating_mul(l), (2 * w + 1).saturating_mul(h));
+            let reach = area.saturating_mul(available).saturating_add(left);
+            if left > highest || reach < lowest {
+                continue;
+            }
             let both_ends = w.saturating_mul(w + 1);
             let least = (2 * w + 1).saturating_mul(l).saturating_add(both_ends);
             let most = (2 * w + 1).saturating_mul(h).saturating_sub(both_ends);
@@ -360,7 +387,7 @@ pub(super) fn take(
             let Some(target) = q.checked_mul(area).and_then(|t| t.checked_add(left)) else {
                 continue;
             };
-            if q > available || target > most.max(left) {
+            if q > available || target > most.max(left) || target < lowest || target > highest {
                 continue;
             }
             let Some((k1, k2)) = solve_spans(target, width, (low, high)) else {

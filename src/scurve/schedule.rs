@@ -15,17 +15,30 @@ pub(super) struct JerkChange {
     pub jerk: i64,
 }
 
-/// At most this many jerk changes (after changes on the same cycle are added up): the main move's
-/// four kinds of unit, with first ramps `a − 1` or `a`, second ramps `b − 1` or `b` and phase V
-/// from `c − 1` or `c`, have their eight corners on at most 1 + 2 + 2 + 3 + 2 + 3 + 3 + 4 = 20
-/// cycles; two fine units add at most 10 more, three notch pairs 24 (fine units and notch pairs
-/// never come together): 44, and the end marker — 64, a power of two, so that a replay indexes
-/// it with a mask instead of a bounds check.
-pub(super) const MAX_CHANGES: usize = 64;
+/// At most this many runs in a sealed replay, its end marker included. The changes of a plan fall
+/// on at most 44 distinct cycles: the main move's four kinds of unit, with first ramps `a − 1` or
+/// `a`, second ramps `b − 1` or `b` and phase V from `c − 1` or `c`, have their eight corners on
+/// at most 1 + 2 + 2 + 3 + 2 + 3 + 3 + 4 = 20 cycles; two fine units add at most 10 more, three
+/// notch pairs 24 (fine units and notch pairs never come together). Each distinct cycle before
+/// the last starts one run (the first, cycle 0, is a corner of every unit), and the end marker
+/// closes the replay: 45.
+pub(super) const MAX_CHANGES: usize = 45;
 
-/// The index of the sentinel, a change that holds no cycle (never written: a schedule has at
-/// most 45 changes). A replay pointed at it takes the slow path on its next event.
-pub(super) const SENTINEL: usize = MAX_CHANGES - 1;
+/// The index that stands for "no jerk change": past the end of the arrays, so a replay pointed at
+/// it takes the slow path on its next event.
+pub(super) const SENTINEL: usize = MAX_CHANGES;
+
+/// At most this many changes of the main move (see [`MAX_CHANGES`]): 20 with notch pairs, 30
+/// with fine units.
+const MAX_MAIN_CHANGES: usize = 30;
+
+/// At most this many changes from notch pairs: eight per pair.
+const MAX_NOTCH_CHANGES: usize = 8 * MAX_NOTCHES;
+
+// The sealing pass writes runs from the start of the arrays while it reads the main move's
+// changes from their end; it cannot overtake them while the notch pairs' changes are fewer than
+// the free slots before the main move's 20 ([`Schedule::seal`]).
+const _: () = assert!(MAX_NOTCH_CHANGES < MAX_CHANGES - 20);
 
 /// The exact limits in I32F32 bits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -61,14 +74,17 @@ pub(super) struct Replay {
 /// quarter smaller (a copy costs about an instruction per byte on a Cortex-M4).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) struct Schedule {
-    /// While building: the cycle of each change (0 = the first step). Sealed: the cycles it
-    /// holds.
+    /// While building: the cycle of each change of the main move (0 = the first step), sorted,
+    /// in `[start, MAX_CHANGES)`. Sealed: the cycles each run holds, in `[0, len)`.
     holds: [u64; MAX_CHANGES],
     /// While building: the change of the jerk, modulo 2^32 (a change is at most 2J < 2^32, so
     /// it is zero exactly when its residue is, and the running sum of the residues is the jerk,
-    /// which fits 32 bits). Sealed: the jerk it sets.
+    /// which fits 32 bits). Sealed: the jerk each run sets.
     jerks: [i32; MAX_CHANGES],
+    /// Sealed: how many runs, the end marker included.
     len: usize,
+    /// While building: the first of the main move's changes.
+    start: usize,
     /// The plan's summary (its peaks zero: [`Self::replay`] finds them when they are asked for).
     pub plan: ScurvePlan,
 }
@@ -79,6 +95,7 @@ impl Schedule {
         holds: [0; MAX_CHANGES],
         jerks: [0; MAX_CHANGES],
         len: 0,
+        start: MAX_CHANGES,
         plan: ScurvePlan {
             phases: [0; 7],
             total: 0,
@@ -87,14 +104,22 @@ impl Schedule {
         },
     };
 
-    /// The sealed change at `index` modulo [`MAX_CHANGES`] (no bounds check on the replay's
-    /// path).
+    /// The sealed change at `index`; `None` past the arrays ([`SENTINEL`]). One comparison on
+    /// the replay's path, which the bounds checks of both arrays share.
     #[inline]
-    pub fn change(&self, index: usize) -> JerkChange {
-        JerkChange {
-            hold: self.holds[index % MAX_CHANGES],
-            jerk: i64::from(self.jerks[index % MAX_CHANGES]),
-        }
+    pub fn change(&self, index: usize) -> Option<JerkChange> {
+        (index < MAX_CHANGES).then(|| JerkChange {
+            hold: self.holds[index],
+            jerk: i64::from(self.jerks[index]),
+        })
+    }
+
+    /// The sealed change at `index`, or the end marker's past the arrays (for the slow path).
+    pub fn run(&self, index: usize) -> JerkChange {
+        self.change(index).unwrap_or(JerkChange {
+            hold: u64::MAX,
+            jerk: 0,
+        })
     }
 
     /// How many changes the sealed replay has, its end marker included.
@@ -105,14 +130,15 @@ impl Schedule {
     /// No move.
     pub fn clear(&mut self) {
         self.len = 0;
+        self.start = MAX_CHANGES;
         self.plan = ScurvePlan::default();
     }
 
     /// Makes this a move of one raw unit: a velocity of 1 on one cycle (jerk +1, −2, +1).
     pub fn single_unit(&mut self, direction: i64) {
-        self.clear();
-        for (cycle, amount) in [(0, 1), (1, -3), (2, 3)] {
-            self.add(cycle, amount * direction);
+        self.start = MAX_CHANGES;
+        for (cycle, amount) in [(2, 3), (1, -3), (0, 1)] {
+            self.prepend(cycle, amount * direction);
         }
         self.plan = ScurvePlan {
             phases: [1, 0, 1, 0, 0, 0, 1],
@@ -120,7 +146,7 @@ impl Schedule {
             peak_acceleration: 0,
             peak_velocity: 0,
         };
-        self.seal();
+        self.seal(&Placement::default(), direction);
     }
 
     /// The runs of the sealed replay, `(cycles, jerk)` in order, the end marker left out.
@@ -132,37 +158,36 @@ impl Schedule {
             .map(|(&hold, &jerk)| (hold, i64::from(jerk)))
     }
 
-    /// Adds `amount` on `cycle`, keeping the list sorted: from the end back to its place (the
-    /// group corners arrive slot by slot, nearly in order, so this is a step or two each), added
-    /// to a change on the same cycle.
-    fn add(&mut self, cycle: u64, amount: i64) {
+    /// Adds `amount` on `cycle` to the main move's changes in `[start, MAX_CHANGES)`, keeping
+    /// them sorted: the corners arrive latest first, so a change goes in at the front, or a step
+    /// or two in, or is added to a change on the same cycle.
+    fn prepend(&mut self, cycle: u64, amount: i64) {
         // Modulo 2^32 (see `jerks`): the truncation is the residue.
         let amount = amount as i32;
-        let mut at = self.len.min(SENTINEL - 1);
-        while at > 0 && self.holds[at - 1] > cycle {
-            at -= 1;
+        let start = self.start.min(MAX_CHANGES);
+        let mut at = start;
+        while at < MAX_CHANGES && self.holds[at] < cycle {
+            at += 1;
         }
-        if at > 0 && self.holds[at - 1] == cycle {
-            self.jerks[at - 1] = self.jerks[at - 1].wrapping_add(amount);
+        if at < MAX_CHANGES && self.holds[at] == cycle {
+            self.jerks[at] = self.jerks[at].wrapping_add(amount);
             return;
         }
-        if self.len + 1 >= SENTINEL {
-            return; // Unreachable: MAX_CHANGES covers every group and pair, and the marker.
+        if start + MAX_MAIN_CHANGES <= MAX_CHANGES {
+            return; // Unreachable: the main move has at most MAX_MAIN_CHANGES (see MAX_CHANGES).
         }
-        // A step or two back at most: a loop, not a library call.
-        let mut k = self.len;
-        while k > at {
-            self.holds[k] = self.holds[k - 1];
-            self.jerks[k] = self.jerks[k - 1];
-            k -= 1;
+        // A step or two at most: a loop, not a library call.
+        for k in start..at {
+            self.holds[k - 1] = self.holds[k];
+            self.jerks[k - 1] = self.jerks[k];
         }
-        self.holds[at] = cycle;
-        self.jerks[at] = amount;
-        self.len += 1;
+        self.holds[at - 1] = cycle;
+        self.jerks[at - 1] = amount;
+        self.start = start - 1;
     }
 
     /// Makes this the schedule of `main` less the notch pairs of `placement`, in the direction
-    /// `direction` (±1), with `plan` as its summary, and seals it ([`Self::seal`]).
+    /// `direction` (±1), with `plan` as its summary, sealed ([`Self::seal`]).
     pub fn build(
         &mut self,
         main: &MainMove,
@@ -170,14 +195,14 @@ impl Schedule {
         direction: i64,
         plan: ScurvePlan,
     ) {
-        self.len = 0;
+        self.start = MAX_CHANGES;
         self.plan = plan;
         // The groups of a unit mix differ from the longest ramps and cruise (a, b, c) by at most
         // one cycle each, so the eight corners of all of them fall on at most 20 cycles: the
         // corner `s` of a group with ramps one shorter by (δa, δb, δc) lands δ = the sum of the
         // δs it includes before the longest group's. Their changes are added up in a table
-        // first (no search), then appended in order; groups further off (fine units) are added
-        // corner by corner.
+        // first (no search), then put in order, latest first; groups further off (fine units)
+        // are added corner by corner.
         let (a, b, c) = (main.most(|g| g.a), main.most(|g| g.b), main.most(|g| g.c));
         // Counts of at most J < 2^31 units each, with their sign: 32 bits.
         let mut table = [[0i32; 4]; 8];
@@ -185,8 +210,8 @@ impl Schedule {
             let (da, db, dc) = (a - group.a, b - group.b, c - group.c);
             let count = group.count as i32 * direction as i32;
             if da > 1 || db > 1 || dc > 1 {
-                for (cycle, sign) in corners(group.a, group.b, group.c) {
-                    self.add(cycle, sign * i64::from(count));
+                for (cycle, sign) in corners(group.a, group.b, group.c).into_iter().rev() {
+                    self.prepend(cycle, sign * i64::from(count));
                 }
                 continue;
             }
@@ -198,92 +223,86 @@ impl Schedule {
                 table[slot][delta] += count;
             }
         }
-        for (slot, (base, sign)) in corners(a, b, c).into_iter().enumerate() {
-            for delta in (0..4).rev() {
-                let amount = table[slot][delta];
+        for (slot, (base, sign)) in corners(a, b, c).into_iter().enumerate().rev() {
+            for (delta, &amount) in table[slot].iter().enumerate() {
                 if amount != 0 {
                     // base ≥ δ: a shorter ramp or cruise is still at least one cycle.
-                    self.add(base - delta as u64, sign * i64::from(amount));
+                    self.prepend(base - delta as u64, sign * i64::from(amount));
                 }
             }
         }
-        if !placement.notches().is_empty() {
-            self.merge(placement, direction);
-        }
-        self.seal();
+        self.seal(placement, direction);
     }
 
-    /// Merges the notch pairs of `placement` into the sorted changes.
-    fn merge(&mut self, placement: &Placement, direction: i64) {
-        // A jerk of ±1 on one cycle is a change by ±1 on it and back on the next. The pairs'
-        // changes, sorted apart (at most 24), are merged in from the end in one pass.
-        let mut cycles = [0u64; 8 * MAX_NOTCHES];
-        let mut amounts = [0i32; 8 * MAX_NOTCHES];
-        let mut count = 0;
-        for notch in placement.notches() {
-            for (cycle, amount) in notch.impulses() {
-                let amount = (amount * direction) as i32;
-                for (cycle, amount) in [(cycle, amount), (cycle + 1, -amount)] {
-                    let mut k = count;
-                    while k > 0 && cycles[k - 1] > cycle {
-                        cycles[k] = cycles[k - 1];
-                        amounts[k] = amounts[k - 1];
-                        k -= 1;
-                    }
-                    cycles[k] = cycle;
-                    amounts[k] = amount;
-                    count += 1;
-                }
-            }
-        }
-        let (mut i, mut k) = (self.len, count);
-        let mut write = (self.len + count).min(SENTINEL - 2);
-        self.len = write;
-        while k > 0 && write > 0 {
-            write -= 1;
-            if i > 0 && self.holds[i - 1] > cycles[k - 1] {
-                self.holds[write] = self.holds[i - 1];
-                self.jerks[write] = self.jerks[i - 1];
-                i -= 1;
-            } else {
-                self.holds[write] = cycles[k - 1];
-                self.jerks[write] = amounts[k - 1];
-                k -= 1;
-            }
-        }
-    }
-
-    /// Makes the built schedule (changes sorted by cycle) a replay: runs of constant jerk, each
-    /// the jerk it sets and the cycles it holds, closed by an end marker (setting the jerk to
-    /// zero, held for ever: the acceleration and velocity are zero there already). Changes on the
-    /// same cycle are added up; changes that leave the jerk as it was, and those on or after the
-    /// last cycle, would cost a replay's slow path for nothing and are dropped. The replay
-    /// starts with the run from cycle 0 (of zero jerk if nothing changes there).
-    fn seal(&mut self) {
+    /// Makes the main move's changes (sorted, in `[start, MAX_CHANGES)`) and the notch pairs of
+    /// `placement` a replay: runs of constant jerk, each the jerk it sets and the cycles it
+    /// holds, from index 0, closed by an end marker (setting the jerk to zero, held for ever:
+    /// the acceleration and velocity are zero there already).
+    ///
+    /// One forward pass merges the three streams of notch changes (each pair's eight changes
+    /// come in order: a jerk of ±1 on one cycle is a change by ±1 on it and back on the next)
+    /// into the main move's, adds up changes on the same cycle and drops changes that leave the
+    /// jerk as it was (and those on or after the last cycle), which would cost a replay's slow
+    /// path for nothing. The runs are written from the start of the arrays while the main
+    /// move's changes are read from their end: after `r` main and `n` notch changes at most
+    /// `r + n` runs are written, and `n ≤ 24 < MAX_CHANGES − 20`, so the writing never
+    /// overtakes the reading.
+    fn seal(&mut self, placement: &Placement, direction: i64) {
         let total = self.plan.total;
-        // At most one run per change and the one from cycle 0, then the marker: all before the
-        // sentinel.
-        let len = self.len.min(SENTINEL - 2);
-        // The run open from cycle `start` with jerk `jerk`; runs before `written` are sealed.
-        // Each run is written at or before the change being read, which is read first.
-        let (mut written, mut start, mut jerk) = (0, 0u64, 0i32);
-        for i in 0..=len {
-            let (cycle, change) = if i < len {
-                (self.holds[i].min(total), self.jerks[i])
+        let notches = placement.notches();
+        // The pairs' streams, earliest next change first: (its cycle, the pair); a stream that
+        // is done has the cycle u64::MAX and sinks to the end. One comparison per change picks
+        // the main move's or the first stream's.
+        let mut queue = [(u64::MAX, 0usize); MAX_NOTCHES];
+        let mut next = [0usize; MAX_NOTCHES];
+        for (k, notch) in notches.iter().enumerate() {
+            queue[k] = (notch.change(0).0, k);
+        }
+        queue.sort_unstable_by_key(|&(cycle, _)| cycle);
+        let mut main = self.start.min(MAX_CHANGES);
+        // The run open from cycle `from` with jerk `jerk`; runs before `written` are sealed.
+        let (mut written, mut from, mut jerk) = (0, 0u64, 0i32);
+        loop {
+            let main_cycle = if main < MAX_CHANGES {
+                self.holds[main]
             } else {
-                (total, 0)
+                u64::MAX
             };
-            if cycle != start {
+            let (notch_cycle, k) = queue[0];
+            let cycle = main_cycle.min(notch_cycle).min(total);
+            if cycle != from {
                 if written > 0 && self.jerks[written - 1] == jerk {
-                    self.holds[written - 1] += cycle - start;
-                } else {
-                    self.holds[written] = cycle - start;
+                    self.holds[written - 1] += cycle - from;
+                } else if written < MAX_CHANGES - 1 {
+                    self.holds[written] = cycle - from;
                     self.jerks[written] = jerk;
                     written += 1;
                 }
-                start = cycle;
+                from = cycle;
+            }
+            if cycle == total {
+                break;
             }
             // The running sum modulo 2^32 is the jerk (see `jerks`).
+            let change = match notches.get(k) {
+                Some(notch) if notch_cycle < main_cycle => {
+                    let amount = notch.change(next[k]).1;
+                    next[k] += 1;
+                    // Back into the queue: a step or two down.
+                    queue[0].0 = notch.change(next[k]).0;
+                    for i in 1..MAX_NOTCHES {
+                        if queue[i].0 >= queue[i - 1].0 {
+                            break;
+                        }
+                        queue.swap(i, i - 1);
+                    }
+                    amount * direction as i32
+                }
+                _ => {
+                    main += 1;
+                    self.jerks[main - 1]
+                }
+            };
             jerk = jerk.wrapping_add(change);
         }
         self.holds[written] = u64::MAX;
@@ -345,6 +364,74 @@ impl Schedule {
             peak_velocity: i64::try_from(peak_velocity).unwrap_or(i64::MAX),
             within_limits,
             distance,
+        }
+    }
+}
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scurve::remainder::Notch;
+    use crate::scurve::shape::Group;
+
+    /// The sealed runs are, cycle by cycle, the main move's jerk (from its groups' closed form)
+    /// plus the notch pairs' impulses: the one-pass merge loses, reorders and drops nothing,
+    /// even with two pairs starting on the same cycle.
+    #[test]
+    fn sealed_runs_are_the_jerk_of_the_move() {
+        let groups = [
+            Group {
+                count: 1,
+                a: 443,
+                b: 444,
+                c: 21846,
+            },
+            Group {
+                count: 2,
+                a: 442,
+                b: 444,
+                c: 21845,
+            },
+        ];
+        let main = MainMove::from_groups(&groups);
+        let placement = Placement::default()
+            .with(Notch {
+                start: 360,
+                width: 84,
+                span: 21845,
+            })
+            .with(Notch {
+                start: 440,
+                width: 5,
+                span: 10972,
+            })
+            .with(Notch {
+                start: 440,
+                width: 6,
+                span: 12716,
+            });
+        let total = main.total();
+        for direction in [1, -1] {
+            let mut schedule = Schedule::EMPTY;
+            let plan = ScurvePlan {
+                total,
+                ..ScurvePlan::default()
+            };
+            schedule.build(&main, &placement, direction, plan);
+            let mut cycle = 0u64;
+            for (hold, jerk) in schedule.runs() {
+                for n in cycle..cycle + hold {
+                    let impulses: i64 = placement
+                        .notches()
+                        .iter()
+                        .flat_map(|notch| notch.impulses())
+                        .filter(|&(at, _)| at == n)
+                        .map(|(_, amount)| amount)
+                        .sum();
+                    assert_eq!(jerk, direction * (main.jerk_at(n) + impulses), "cycle {n}");
+                }
+                cycle += hold;
+            }
+            assert_eq!(cycle, total);
         }
     }
 }

@@ -110,6 +110,15 @@ impl MainMove {
         self
     }
 
+    #[cfg(test)]
+    pub fn from_groups(groups: &[Group]) -> Self {
+        let mut m = Self::default();
+        for &g in groups {
+            m.push(g);
+        }
+        m
+    }
+
     fn push(&mut self, group: Group) {
         if group.count > 0 && group.a > 0 && self.len < MAX_GROUPS {
             self.groups[self.len] = group;
