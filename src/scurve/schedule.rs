@@ -75,7 +75,7 @@ pub(super) struct Replay {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) struct Schedule {
     /// While building: the cycle of each change of the main move (0 = the first step), sorted,
-    /// in `[start, MAX_CHANGES)`. Sealed: the cycles each run holds, in `[0, len)`.
+    /// in the top `main_len` entries. Sealed: the cycles each run holds, in `[0, len)`.
     holds: [u64; MAX_CHANGES],
     /// While building: the change of the jerk, modulo 2^32 (a change is at most 2J < 2^32, so
     /// it is zero exactly when its residue is, and the running sum of the residues is the jerk,
@@ -83,8 +83,10 @@ pub(super) struct Schedule {
     jerks: [i32; MAX_CHANGES],
     /// Sealed: how many runs, the end marker included.
     len: usize,
-    /// While building: the first of the main move's changes.
-    start: usize,
+    /// While building: how many changes of the main move there are, at the top of the arrays
+    /// (zero, not an index, when empty: the empty schedule is then all zeros, which a clear
+    /// makes, where anything else is a copy from flash twice the cost on a Cortex-M4).
+    main_len: usize,
     /// The plan's summary (its peaks zero: [`Self::replay`] finds them when they are asked for).
     pub plan: ScurvePlan,
 }
@@ -95,7 +97,7 @@ impl Schedule {
         holds: [0; MAX_CHANGES],
         jerks: [0; MAX_CHANGES],
         len: 0,
-        start: MAX_CHANGES,
+        main_len: 0,
         plan: ScurvePlan {
             phases: [0; 7],
             total: 0,
@@ -130,13 +132,13 @@ impl Schedule {
     /// No move.
     pub fn clear(&mut self) {
         self.len = 0;
-        self.start = MAX_CHANGES;
+        self.main_len = 0;
         self.plan = ScurvePlan::default();
     }
 
     /// Makes this a move of one raw unit: a velocity of 1 on one cycle (jerk +1, −2, +1).
     pub fn single_unit(&mut self, direction: i64) {
-        self.start = MAX_CHANGES;
+        self.main_len = 0;
         for (cycle, amount) in [(2, 3), (1, -3), (0, 1)] {
             self.prepend(cycle, amount * direction);
         }
@@ -158,13 +160,13 @@ impl Schedule {
             .map(|(&hold, &jerk)| (hold, i64::from(jerk)))
     }
 
-    /// Adds `amount` on `cycle` to the main move's changes in `[start, MAX_CHANGES)`, keeping
+    /// Adds `amount` on `cycle` to the main move's changes (the top `main_len` entries), keeping
     /// them sorted: the corners arrive latest first, so a change goes in at the front, or a step
     /// or two in, or is added to a change on the same cycle.
     fn prepend(&mut self, cycle: u64, amount: i64) {
         // Modulo 2^32 (see `jerks`): the truncation is the residue.
         let amount = amount as i32;
-        let start = self.start.min(MAX_CHANGES);
+        let start = MAX_CHANGES - self.main_len.min(MAX_CHANGES);
         let mut at = start;
         while at < MAX_CHANGES && self.holds[at] < cycle {
             at += 1;
@@ -183,7 +185,7 @@ impl Schedule {
         }
         self.holds[at - 1] = cycle;
         self.jerks[at - 1] = amount;
-        self.start = start - 1;
+        self.main_len += 1;
     }
 
     /// Makes this the schedule of `main` less the notch pairs of `placement`, in the direction
@@ -195,7 +197,7 @@ impl Schedule {
         direction: i64,
         plan: ScurvePlan,
     ) {
-        self.start = MAX_CHANGES;
+        self.main_len = 0;
         self.plan = plan;
         // The groups of a unit mix differ from the longest ramps and cruise (a, b, c) by at most
         // one cycle each, so the eight corners of all of them fall on at most 20 cycles: the
@@ -234,7 +236,7 @@ impl Schedule {
         self.seal(placement, direction);
     }
 
-    /// Makes the main move's changes (sorted, in `[start, MAX_CHANGES)`) and the notch pairs of
+    /// Makes the main move's changes (sorted, the top `main_len` entries) and the notch pairs of
     /// `placement` a replay: runs of constant jerk, each the jerk it sets and the cycles it
     /// holds, from index 0, closed by an end marker (setting the jerk to zero, held for ever:
     /// the acceleration and velocity are zero there already).
@@ -259,7 +261,7 @@ impl Schedule {
             queue[k] = (notch.change(0).0, k);
         }
         queue.sort_unstable_by_key(|&(cycle, _)| cycle);
-        let mut main = self.start.min(MAX_CHANGES);
+        let mut main = MAX_CHANGES - self.main_len.min(MAX_CHANGES);
         // The run open from cycle `from` with jerk `jerk`; runs before `written` are sealed.
         let (mut written, mut from, mut jerk) = (0, 0u64, 0i32);
         loop {

@@ -100,14 +100,18 @@ fn shapes(distance: u64, limits: Limits64, found: &mut [Shape; MAX_SHAPES]) -> u
                 continue;
             }
             tried[i] = b;
-            // Past the distance's own peak, a faster cruise cannot shorten the move.
-            let cap = div(distance, a + b);
-            let target = if b >= to_velocity {
+            // Past the distance's own peak, ⌊D/(a + b)⌋, a faster cruise cannot shorten the move:
+            // min(x, ⌊D/(a + b)⌋) is x exactly when x·(a + b) ≤ D, which a multiplication tells
+            // (a division only when the cap applies).
+            let aim = if b >= to_velocity {
                 velocity
             } else {
                 peak.saturating_mul(b)
-            }
-            .min(cap);
+            };
+            let target = match aim.checked_mul(a + b) {
+                Some(covered) if covered <= distance => aim,
+                _ => div(distance, a + b),
+            };
             if target == 0 {
                 continue;
             }
