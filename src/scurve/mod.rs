@@ -30,8 +30,8 @@
 //! Planning takes a bounded number of integer operations, the same on every target (no floating
 //! point): at most eight shapes, each solved in closed form, a fixed number of notch-pair
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
-//! checked). Measured (see the README for the commands): 441 ns median, 2.4 µs at worst on the
-//! x86 development machine; 12,141 Cortex-M4 instructions median, 29,443 at worst over 1,000
+//! checked). Measured (see the README for the commands): 430 ns median, 2.1 µs at worst on the
+//! x86 development machine; 11,846 Cortex-M4 instructions median, 27,883 at worst over 1,000
 //! random moves. A step is at most 40 Cortex-M4 instructions.
 
 mod division;
