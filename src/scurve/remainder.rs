@@ -170,6 +170,9 @@ pub(super) fn velocity_notch(width: u64, bounds: &Bounds, c: u64) -> Option<Notc
 /// Cycles `[low, high]` (empty when `low > high`).
 type Interval = (u64, u64);
 
+/// Where a pair of some width can go: its first notch's cycles, its second's, and its spans.
+type Region = (Interval, Interval, Interval);
+
 /// Where a pair of width `w` can start (its first notch: −1 where the jerk is ≥ 0, +1 `w` later
 /// where it is ≤ 0, the window before phase V): in phases I–II (`in_cruise` false), or in the
 /// cruise.
@@ -359,9 +362,15 @@ pub(super) fn take(
                 .into_iter()
                 .filter(move |w| !around.contains(w)),
         );
+        // The widths around the guess are consecutive: one's wider pair is the next one's.
+        let mut wider: Option<(u64, Region)> = None;
         for width in widths.filter(|&w| w > 0) {
-            let (first1, second1, narrow) = region(width);
+            let (first1, second1, narrow) = match wider {
+                Some((w, known)) if w == width => known,
+                _ => region(width),
+            };
             let (first2, second2, wide) = region(width + 1);
+            wider = Some((width + 1, (first2, second2, wide)));
             let (low, high) = (narrow.0.max(wide.0), narrow.1.min(wide.1));
             if low > high {
                 continue;
