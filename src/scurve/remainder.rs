@@ -14,7 +14,7 @@
 //! remainder `E` in their range: `w·k₁ + (w + 1)·k₂ = E` is solved by
 //! `k₁ ≡ −E (mod w + 1)` ([`solve_spans`]), because `w ≡ −1` is its own inverse modulo `w + 1`.
 
-use super::division::{ceil_div, div, div_ceil, floor_div, rem};
+use super::division::{ceil_div, div, div_ceil, floor_div};
 use super::shape::{Bounds, MainMove};
 
 /// One notch pair: see the module docs.
@@ -33,24 +33,6 @@ impl Notch {
     pub fn impulses(&self) -> [(u64, i64); 4] {
         let (s, w, k) = (self.start, self.width, self.span);
         [(s, -1), (s + w, 1), (s + k, 1), (s + k + w, -1)]
-    }
-
-    /// Its `index`-th change of the jerk (0..8), in order: `(cycle, ±1)`; `(u64::MAX, 0)` past
-    /// the last. Each impulse of [`Self::impulses`] is a jerk of ±1 on one cycle: a change by
-    /// ±1 on it and back on the next. They come in order because `1 ≤ w < k`.
-    pub fn change(&self, index: usize) -> (u64, i32) {
-        let (s, w, k) = (self.start, self.width, self.span);
-        match index {
-            0 => (s, -1),
-            1 => (s + 1, 1),
-            2 => (s + w, 1),
-            3 => (s + w + 1, -1),
-            4 => (s + k, 1),
-            5 => (s + k + 1, -1),
-            6 => (s + k + w, -1),
-            7 => (s + k + w + 1, 1),
-            _ => (u64::MAX, 0),
-        }
     }
 
     /// The last cycle on which it lowers the velocity.
@@ -143,10 +125,12 @@ impl Placement {
         // The dips: at the first and last cycle of each, the main move's velocity covers them
         // all. Inside, the main move's velocity rises (falls) faster than the dips deepen, on
         // every cycle where the acceleration is at least their number (the tests replay every
-        // plan they make and check it: [`super::schedule::Schedule::replay`]).
+        // plan they make and check it: [`super::schedule::Schedule::replay`]). The velocity is
+        // first bounded below by [`Bounds::floor`] (one closed form instead of one per group);
+        // the exact sum is taken only where that floor is not enough.
         let covered = |n: u64| {
             let depth: u64 = notches.iter().map(|notch| notch.depth_at(n)).sum();
-            main.velocity_at(n) >= depth
+            bounds.floor.velocity_at(n) >= depth || main.velocity_at(n) >= depth
         };
         jerk_fits
             && new
@@ -173,39 +157,80 @@ type Interval = (u64, u64);
 /// Where a pair of some width can go: its first notch's cycles, its second's, and its spans.
 type Region = (Interval, Interval, Interval);
 
-/// Where a pair of width `w` can start (its first notch: −1 where the jerk is ≥ 0, +1 `w` later
-/// where it is ≤ 0, the window before phase V): in phases I–II (`in_cruise` false), or in the
-/// cruise.
-fn firsts(bounds: &Bounds, w: u64, in_cruise: bool) -> Interval {
-    let last = bounds.first_deceleration.saturating_sub(w);
-    if in_cruise {
-        (bounds.rise_end, last)
-    } else {
+/// Where one notch of a pair of width `w` can start, as a function of `w`:
+/// `[max(low_floor, low_base − w), min(high_cap, high_base − w)]`, the subtractions saturating.
+#[derive(Debug, Clone, Copy)]
+struct Edges {
+    low_floor: u64,
+    low_base: u64,
+    high_cap: u64,
+    high_base: u64,
+}
+
+impl Edges {
+    fn at(&self, w: u64) -> Interval {
         (
-            bounds.last_rise_start.saturating_sub(w),
-            bounds.first_fall_end.saturating_sub(1).min(last),
+            self.low_floor.max(self.low_base.saturating_sub(w)),
+            self.high_cap.min(self.high_base.saturating_sub(w)),
         )
     }
 }
 
-/// Where its second notch can start (+1 where the jerk is ≤ 0, from the end of phase III on;
-/// −1 `w` later where the jerk is ≥ 0, before the last cycle): ending in the cruise
-/// (`in_cruise`), or after phase V.
-fn seconds(bounds: &Bounds, w: u64, in_cruise: bool) -> Interval {
-    let from = bounds.rise_end.saturating_sub(1);
-    if in_cruise {
-        (
-            from.max(bounds.rise_end.saturating_sub(w)),
-            bounds.first_deceleration.saturating_sub(w + 1),
-        )
-    } else {
-        (
-            from.max(bounds.deceleration_jerked.saturating_sub(w)),
-            bounds
-                .first_landing
-                .saturating_sub(1)
-                .min(bounds.total.saturating_sub(w + 1)),
-        )
+/// Where a pair can go in one placement, for any width: found once per placement from the
+/// main move's [`Bounds`], then a few subtractions per width.
+#[derive(Debug, Clone, Copy)]
+struct Room {
+    first: Edges,
+    second: Edges,
+}
+
+impl Room {
+    /// The first notch (−1 where the jerk is ≥ 0, +1 `w` later where it is ≤ 0, the window
+    /// before phase V) in phases I–II, or in the cruise (`first_in_cruise`); the second (+1
+    /// where the jerk is ≤ 0, from the end of phase III on; −1 `w` later where the jerk is ≥ 0,
+    /// before the last cycle) ending in the cruise (`second_in_cruise`), or after phase V.
+    fn new(bounds: &Bounds, (first_in_cruise, second_in_cruise): (bool, bool)) -> Self {
+        let deceleration = bounds.first_deceleration;
+        let first = if first_in_cruise {
+            Edges {
+                low_floor: bounds.rise_end,
+                low_base: 0,
+                high_cap: u64::MAX,
+                high_base: deceleration,
+            }
+        } else {
+            Edges {
+                low_floor: 0,
+                low_base: bounds.last_rise_start,
+                high_cap: bounds.first_fall_end.saturating_sub(1),
+                high_base: deceleration,
+            }
+        };
+        let from = bounds.rise_end.saturating_sub(1);
+        let second = if second_in_cruise {
+            Edges {
+                low_floor: from,
+                low_base: bounds.rise_end,
+                high_cap: u64::MAX,
+                high_base: deceleration.saturating_sub(1),
+            }
+        } else {
+            Edges {
+                low_floor: from,
+                low_base: bounds.deceleration_jerked,
+                high_cap: bounds.first_landing.saturating_sub(1),
+                high_base: bounds.total.saturating_sub(1),
+            }
+        };
+        Self { first, second }
+    }
+
+    /// For width `w`: the first notch's cycles, the second's, and the spans between them (a
+    /// pair's span exceeds its width).
+    fn at(&self, w: u64) -> Region {
+        let (first, second) = (self.first.at(w), self.second.at(w));
+        let (low, high) = spans(first, second);
+        (first, second, (low.max(w + 1), high))
     }
 }
 
@@ -263,27 +288,39 @@ fn solve_spans(left: u64, width: u64, range: (u64, u64)) -> Option<(u64, u64)> {
 }
 
 /// One pair of width `width` ∈ {1, 2} taking exactly `left + q·area` with its span in `range`,
-/// for a small remainder: `(span, q)` with the least `q ≤ available`.
+/// for a small remainder: `(span, q)` with the least `q ≤ available`. Widths of one and two
+/// divide by a shift (no division but the one for `q`, and that only when `left` falls short).
 fn one_pair(
     left: u64,
     width: u64,
     range: Interval,
     (area, available): (u64, u64),
 ) -> Option<(u64, u64)> {
-    let w = width;
-    let least = range.0.max(width + 1).checked_mul(w)?.max(left);
-    let mut q = if area == 0 {
-        0
-    } else {
-        div_ceil(least - left, area)
+    debug_assert!(width == 1 || width == 2);
+    let shift = (width - 1) as u32;
+    let least = range.0.max(width + 1).checked_mul(width)?;
+    if range.0 > range.1 || range.1.checked_mul(width)? < left {
+        return None; // no span in range, or the remainder is past the widest
+    }
+    let mut q = match least.checked_sub(left) {
+        Some(short) if short > 0 => {
+            if area == 0 || available == 0 {
+                return None;
+            }
+            div_ceil(short, area)
+        }
+        _ => 0,
     };
     // An even width needs an even distance: one more unit of an odd area fixes the parity.
-    if rem(left.checked_add(q.checked_mul(area)?)?, w) != 0 {
+    let odd = |q: u64| -> Option<bool> {
+        Some(left.checked_add(q.checked_mul(area)?)? & (width - 1) != 0)
+    };
+    if odd(q)? {
         q += 1;
     }
     let target = left.checked_add(q.checked_mul(area)?)?;
-    let span = div(target, w);
-    (rem(target, w) == 0 && q <= available && span <= range.1 && span > width).then_some((span, q))
+    let span = target >> shift;
+    (!odd(q)? && q <= available && span <= range.1 && span > width).then_some((span, q))
 }
 
 /// How many widths around the estimate [`take`] tries.
@@ -321,16 +358,12 @@ pub(super) fn take(
     // in phases I–II with the second in the cruise or after phase V, and both in the cruise for
     // single pairs; first in the cruise, second after phase V, never did).
     const PLACEMENTS: [(bool, bool); 3] = [(false, true), (false, false), (true, true)];
-    let region = |w: u64, (first_in_cruise, second_in_cruise): (bool, bool)| {
-        let first = firsts(bounds, w, first_in_cruise);
-        let second = seconds(bounds, w, second_in_cruise);
-        // A pair's span exceeds its width.
-        let (low, high) = spans(first, second);
-        (first, second, (low.max(w + 1), high))
-    };
+    // The most any q ≤ available can make of the remainder.
+    let reach = area.saturating_mul(available).saturating_add(left);
     for placement in PLACEMENTS {
+        let room = Room::new(bounds, placement);
         for width in 1..=2 {
-            let (first, second, range) = region(width, placement);
+            let (first, second, range) = room.at(width);
             let Some((span, q)) = one_pair(left, width, range, (area, available)) else {
                 continue;
             };
@@ -342,7 +375,7 @@ pub(super) fn take(
         if placement.0 {
             continue;
         }
-        let region = |w: u64| region(w, placement);
+        let region = |w: u64| room.at(w);
         // The widths whose spans land in the middle of their range: from spans of half
         // the move, refined twice (the range depends a little on the width).
         let refine = |width: u64| {
@@ -369,6 +402,16 @@ pub(super) fn take(
                 Some((w, known)) if w == width => known,
                 _ => region(width),
             };
+            // Every sum w·k₁ + (w + 1)·k₂ with both spans in the narrower pair's range lies in
+            // [(2w + 1)·low, (2w + 1)·high]: outside, no q can help (a quick, exact rejection
+            // before the wider pair's room or any division).
+            let odd = (2 * width).saturating_add(1);
+            if narrow.0 > narrow.1
+                || left > odd.saturating_mul(narrow.1)
+                || reach < odd.saturating_mul(narrow.0)
+            {
+                continue;
+            }
             let (first2, second2, wide) = region(width + 1);
             wider = Some((width + 1, (first2, second2, wide)));
             let (low, high) = (narrow.0.max(wide.0), narrow.1.min(wide.1));
@@ -378,10 +421,8 @@ pub(super) fn take(
             // w·k₁ + (w + 1)·k₂ with k₁, k₂ in [low, high] has a solution for every value
             // between these (k₁ moves in steps of w + 1, k₂ of w).
             let (w, l, h) = (width, low, high);
-            // Every sum of the two lies in [(2w + 1)·low, (2w + 1)·high]: outside, no q can
-            // help (a quick, exact rejection before any division).
-            let (lowest, highest) = ((2 * w + 1).saturating_mul(l), (2 * w + 1).saturating_mul(h));
-            let reach = area.saturating_mul(available).saturating_add(left);
+            // The same with both ranges.
+            let (lowest, highest) = (odd.saturating_mul(l), odd.saturating_mul(h));
             if left > highest || reach < lowest {
                 continue;
             }

@@ -1,7 +1,7 @@
 //! The schedule: the plan as a sorted list of jerk changes, built once for the plan that won, and
 //! its one pass that finds the move's peaks (and confirms its limits).
 
-use super::remainder::{Placement, MAX_NOTCHES};
+use super::remainder::{Notch, Placement, MAX_NOTCHES};
 use super::shape::{corners, MainMove};
 use super::ScurvePlan;
 
@@ -49,6 +49,97 @@ pub(super) struct Limits64 {
     pub acceleration: u64,
     /// Velocity, counts/cycle · 2^32.
     pub velocity: u64,
+}
+
+/// A cycle number in the width a sealing pass works in: 32 bits for a move shorter than 2^31
+/// cycles (most moves: a 32-bit core then compares two cycles in one instruction, not three),
+/// 64 otherwise.
+trait Cycle: Copy + Ord + core::ops::Add<Output = Self> + core::ops::Sub<Output = Self> {
+    /// Later than any change.
+    const NEVER: Self;
+    /// The cycle as this width (the pass only narrows cycles of the move, which fit).
+    fn narrow(cycle: u64) -> Self;
+    /// Back to 64 bits.
+    fn widen(self) -> u64;
+}
+
+impl Cycle for u32 {
+    const NEVER: Self = u32::MAX;
+    fn narrow(cycle: u64) -> Self {
+        // Cycles past the move (none are) would sort last, as they should.
+        u32::try_from(cycle).unwrap_or(u32::MAX)
+    }
+    fn widen(self) -> u64 {
+        u64::from(self)
+    }
+}
+
+impl Cycle for u64 {
+    const NEVER: Self = u64::MAX;
+    fn narrow(cycle: u64) -> Self {
+        cycle
+    }
+    fn widen(self) -> u64 {
+        self
+    }
+}
+
+/// One notch pair's jerk changes, one at a time, in order: a jerk of ±1 on one cycle is a
+/// change by ±1 on it and back on the next, so the pair's four impulses at `s`, `s + w`, `s + k`
+/// and `s + k + w` are eight changes, `−1, +1, +1, −1, +1, −1, −1, +1`, each one cycle after the
+/// last or `w − 1` or `k − w − 1` cycles after it (they come in order because `1 ≤ w < k`).
+#[derive(Debug, Clone, Copy)]
+struct Stream<C> {
+    /// The cycle of the next change; [`Cycle::NEVER`] when done.
+    cycle: C,
+    /// Which of the eight changes is next.
+    index: u32,
+    /// Cycles from the second change to the third (and the sixth to the seventh): `w − 1`.
+    short_gap: C,
+    /// Cycles from the fourth change to the fifth: `k − w − 1`.
+    long_gap: C,
+}
+
+impl<C: Cycle> Stream<C> {
+    /// No changes.
+    const DONE: Self = Self {
+        cycle: C::NEVER,
+        index: 8,
+        short_gap: C::NEVER,
+        long_gap: C::NEVER,
+    };
+
+    /// The pair's changes, from the first.
+    fn new(notch: &Notch) -> Self {
+        Self {
+            cycle: C::narrow(notch.start),
+            index: 0,
+            short_gap: C::narrow(notch.width - 1),
+            long_gap: C::narrow(notch.span - notch.width - 1),
+        }
+    }
+
+    /// The change at `cycle` (±1, raw units), moving on to the next.
+    fn advance(&mut self) -> i32 {
+        // Bit i of 0b1001_0110 is set where change i raises the jerk.
+        let amount = if (0b1001_0110 >> (self.index & 7)) & 1 == 1 {
+            1
+        } else {
+            -1
+        };
+        let gap = match self.index {
+            1 | 5 => self.short_gap,
+            3 => self.long_gap,
+            _ => C::narrow(1),
+        };
+        self.index += 1;
+        self.cycle = if self.index >= 8 {
+            C::NEVER
+        } else {
+            self.cycle + gap
+        };
+        amount
+    }
 }
 
 /// What a replay of a sealed schedule does, run by run ([`Schedule::replay`]).
@@ -189,16 +280,25 @@ impl Schedule {
     }
 
     /// Makes this the schedule of `main` less the notch pairs of `placement`, in the direction
-    /// `direction` (±1), with `plan` as its summary, sealed ([`Self::seal`]).
+    /// `direction` (±1), its main units' ramps `(a, b)`, sealed ([`Self::seal`]); `false` (and
+    /// nothing built) if the move is shorter than its ramps.
     pub fn build(
         &mut self,
         main: &MainMove,
         placement: &Placement,
         direction: i64,
-        plan: ScurvePlan,
-    ) {
+        (a, b): (u64, u64),
+    ) -> bool {
+        let total = main.total();
+        let Some(cruise) = total.checked_sub(2 * (a + b)) else {
+            return false;
+        };
         self.main_len = 0;
-        self.plan = plan;
+        // Written in place, field by field (a summary built apart would be copied in).
+        self.plan.phases = [a, b - a, a, cruise, a, b - a, a];
+        self.plan.total = total;
+        self.plan.peak_acceleration = 0;
+        self.plan.peak_velocity = 0;
         // The groups of a unit mix differ from the longest ramps and cruise (a, b, c) by at most
         // one cycle each, so the eight corners of all of them fall on at most 20 cycles: the
         // corner `s` of a group with ramps one shorter by (δa, δb, δc) lands δ = the sum of the
@@ -234,6 +334,7 @@ impl Schedule {
             }
         }
         self.seal(placement, direction);
+        true
     }
 
     /// Makes the main move's changes (sorted, the top `main_len` entries) and the notch pairs of
@@ -250,33 +351,46 @@ impl Schedule {
     /// `r + n` runs are written, and `n ≤ 24 < MAX_CHANGES − 20`, so the writing never
     /// overtakes the reading.
     fn seal(&mut self, placement: &Placement, direction: i64) {
-        let total = self.plan.total;
-        let notches = placement.notches();
-        // The pairs' streams, earliest next change first: (its cycle, the pair); a stream that
-        // is done has the cycle u64::MAX and sinks to the end. One comparison per change picks
-        // the main move's or the first stream's.
-        let mut queue = [(u64::MAX, 0usize); MAX_NOTCHES];
-        let mut next = [0usize; MAX_NOTCHES];
-        for (k, notch) in notches.iter().enumerate() {
-            queue[k] = (notch.change(0).0, k);
+        if self.plan.total < 1 << 31 {
+            self.seal_in::<u32>(placement, direction);
+        } else {
+            self.seal_in::<u64>(placement, direction);
         }
-        queue.sort_unstable_by_key(|&(cycle, _)| cycle);
+    }
+
+    /// [`Self::seal`] with cycles of type `C`, wide enough for every cycle of the move.
+    fn seal_in<C: Cycle>(&mut self, placement: &Placement, direction: i64) {
+        let total = C::narrow(self.plan.total);
+        // The pairs' streams, earliest next change first; a stream that is done sinks to the
+        // end. One comparison per change picks the main move's or the first stream's.
+        let mut queue = [Stream::<C>::DONE; MAX_NOTCHES];
+        for (stream, notch) in queue.iter_mut().zip(placement.notches()) {
+            *stream = Stream::new(notch);
+        }
+        queue.sort_unstable_by_key(|stream| stream.cycle);
+        let sign = direction as i32;
         let mut main = MAX_CHANGES - self.main_len.min(MAX_CHANGES);
         // The run open from cycle `from` with jerk `jerk`; runs before `written` are sealed.
-        let (mut written, mut from, mut jerk) = (0, 0u64, 0i32);
+        let (mut written, mut from, mut jerk) = (0, C::narrow(0), 0i32);
         loop {
             let main_cycle = if main < MAX_CHANGES {
-                self.holds[main]
+                C::narrow(self.holds[main])
             } else {
-                u64::MAX
+                C::NEVER
             };
-            let (notch_cycle, k) = queue[0];
-            let cycle = main_cycle.min(notch_cycle).min(total);
+            let from_notch = queue[0].cycle < main_cycle;
+            let cycle = if from_notch {
+                queue[0].cycle
+            } else {
+                main_cycle
+            }
+            .min(total);
             if cycle != from {
+                let hold = (cycle - from).widen();
                 if written > 0 && self.jerks[written - 1] == jerk {
-                    self.holds[written - 1] += cycle - from;
+                    self.holds[written - 1] += hold;
                 } else if written < MAX_CHANGES - 1 {
-                    self.holds[written] = cycle - from;
+                    self.holds[written] = hold;
                     self.jerks[written] = jerk;
                     written += 1;
                 }
@@ -286,24 +400,19 @@ impl Schedule {
                 break;
             }
             // The running sum modulo 2^32 is the jerk (see `jerks`).
-            let change = match notches.get(k) {
-                Some(notch) if notch_cycle < main_cycle => {
-                    let amount = notch.change(next[k]).1;
-                    next[k] += 1;
-                    // Back into the queue: a step or two down.
-                    queue[0].0 = notch.change(next[k]).0;
-                    for i in 1..MAX_NOTCHES {
-                        if queue[i].0 >= queue[i - 1].0 {
-                            break;
-                        }
-                        queue.swap(i, i - 1);
+            let change = if from_notch {
+                let amount = queue[0].advance();
+                // Back into the queue: a step or two down.
+                if queue[1].cycle < queue[0].cycle {
+                    queue.swap(0, 1);
+                    if queue[2].cycle < queue[1].cycle {
+                        queue.swap(1, 2);
                     }
-                    amount * direction as i32
                 }
-                _ => {
-                    main += 1;
-                    self.jerks[main - 1]
-                }
+                amount * sign
+            } else {
+                main += 1;
+                self.jerks[main - 1]
             };
             jerk = jerk.wrapping_add(change);
         }
@@ -372,7 +481,6 @@ impl Schedule {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scurve::remainder::Notch;
     use crate::scurve::shape::Group;
 
     /// The sealed runs are, cycle by cycle, the main move's jerk (from its groups' closed form)
@@ -414,11 +522,7 @@ mod tests {
         let total = main.total();
         for direction in [1, -1] {
             let mut schedule = Schedule::EMPTY;
-            let plan = ScurvePlan {
-                total,
-                ..ScurvePlan::default()
-            };
-            schedule.build(&main, &placement, direction, plan);
+            assert!(schedule.build(&main, &placement, direction, (443, 444)));
             let mut cycle = 0u64;
             for (hold, jerk) in schedule.runs() {
                 for n in cycle..cycle + hold {

@@ -12,7 +12,6 @@ use super::division::{div, div_ceil};
 use super::remainder::{self, velocity_notch, Placement};
 use super::schedule::{Limits64, Schedule};
 use super::shape::{MainMove, Mix};
-use super::ScurvePlan;
 
 /// `⌊∛n⌋`, bitwise (22 steps; no floating point, so every target computes the same plan).
 pub(super) fn cube_root(mut n: u64) -> u64 {
@@ -64,11 +63,27 @@ const MAX_SHAPES: usize = 8;
 /// of the root of `peak·b·(a + b) = D`, and one shorter), whichever is shorter.
 fn shapes(distance: u64, limits: Limits64, found: &mut [Shape; MAX_SHAPES]) -> usize {
     let (jerk, acceleration, velocity) = (limits.jerk, limits.acceleration, limits.velocity);
-    let by_acceleration = div(acceleration, jerk);
-    let by_velocity = div(velocity, jerk).isqrt();
-    let by_distance = cube_root(div(distance, 2 * jerk));
-    let a0 = by_acceleration.min(by_velocity).min(by_distance);
+    // a* = min(⌊A/J⌋, ⌊√⌊V/J⌋⌋, ⌊∛⌊D/2J⌋⌋); a root is taken only when it can be the least:
+    // ⌊√⌊V/J⌋⌋ ≥ m ⇔ V ≥ m²·J and ⌊∛⌊D/2J⌋⌋ ≥ m ⇔ D ≥ 2J·m³, a multiplication each.
+    let mut a0 = div(acceleration, jerk);
+    if a0
+        .checked_mul(a0)
+        .and_then(|s| s.checked_mul(jerk))
+        .is_none_or(|s| s > velocity)
+    {
+        a0 = a0.min(div(velocity, jerk).isqrt());
+    }
+    let cube = a0.checked_mul(a0).and_then(|s| s.checked_mul(a0));
+    if cube
+        .and_then(|c| c.checked_mul(2 * jerk))
+        .is_none_or(|c| c > distance)
+    {
+        a0 = a0.min(cube_root(div(distance, 2 * jerk)));
+    }
     let mut len = 0;
+    // Cycles at the maximum velocity, ⌈D/V⌉, the same for every shape that reaches it: found
+    // once, when first needed.
+    let mut at_velocity = None;
     // The floor and the ceiling of a* (both 1 when a* < 1).
     let firsts = if a0 == 0 { 1..=1 } else { a0..=a0 + 1 };
     for a in firsts {
@@ -115,11 +130,16 @@ fn shapes(distance: u64, limits: Limits64, found: &mut [Shape; MAX_SHAPES]) -> u
             if target == 0 {
                 continue;
             }
+            let cruise = if target == velocity {
+                *at_velocity.get_or_insert_with(|| div_ceil(distance, velocity))
+            } else {
+                div_ceil(distance, target)
+            };
             let shape = Shape {
                 a,
                 b,
                 target,
-                cycles: a + b + div_ceil(distance, target).max(a + b),
+                cycles: a + b + cruise.max(a + b),
             };
             // Fastest first (an insertion sort of at most six).
             let mut k = len;
@@ -366,17 +386,9 @@ fn finish(
     move_: &Move,
     out: &mut Schedule,
 ) -> bool {
-    let total = main.total();
-    let Some(cruise) = total.checked_sub(2 * (a + b)) else {
+    if !out.build(main, placement, move_.direction, (a, b)) {
         return false;
-    };
-    let plan = ScurvePlan {
-        phases: [a, b - a, a, cruise, a, b - a, a],
-        total,
-        peak_acceleration: 0,
-        peak_velocity: 0,
-    };
-    out.build(main, placement, move_.direction, plan);
+    }
     // The planner's inequalities keep the limits and its arithmetic the distance; the tests run
     // with debug assertions, so every plan they make is replayed and checked here.
     debug_assert!(

@@ -15,7 +15,7 @@
 //! `(a, b)`, `(a, b − 1)`, `(a − 1, b)` and `(a − 1, b − 1)`, reaches the limits to the raw unit
 //! ([`Mix::solve`]).
 
-use super::division::{div, div_ceil, rem};
+use super::division::{div, div_ceil, div_rem, rem};
 
 /// One group of identical units: `count · tb(a, b, c)`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -162,6 +162,12 @@ impl MainMove {
             deceleration_jerked: self.most(|g| g.c + g.a),
             first_landing: self.least(|g| g.c + g.b),
             total: self.total(),
+            floor: Group {
+                count: self.groups().iter().map(|g| g.count).sum(),
+                a: self.least(|g| g.a),
+                b: self.least(|g| g.b),
+                c: self.least(|g| g.c),
+            },
         }
     }
 }
@@ -189,6 +195,11 @@ pub(super) struct Bounds {
     pub first_landing: u64,
     /// Cycles of the move.
     pub total: u64,
+    /// All the units as one group with the shortest ramps and cruise of any: its velocity is
+    /// at most the move's on every cycle (`box(m) ≤ box(n)` pointwise for `m ≤ n`, and a
+    /// convolution of non-negative boxes keeps that order), and it is still a triple box
+    /// (`min a ≤ min b`, `min c ≥ min a + min b`, as each group's are).
+    pub floor: Group,
 }
 
 /// A unit mix: how many units of each kind, with ramps `(a, b)`. Kinds: `(a, b)`,
@@ -376,11 +387,19 @@ fn split(lowering: u64, a: u64, long: u64, short: u64) -> Option<(u64, u64)> {
         return (lowering <= long).then_some((lowering, 0));
     }
     // (a − 1)·y ≡ lowering (mod a) ⇔ y ≡ −lowering (mod a); then y = y₀ + a·t and
-    // x = x₀ − (a − 1)·t.
-    let y0 = rem(a - rem(lowering, a), a);
-    let x0 = div(lowering.checked_sub((a - 1) * y0)?, a);
+    // x = x₀ − (a − 1)·t. With lowering = q·a + r: y₀ = 0 and x₀ = q when r = 0, else
+    // y₀ = a − r and x₀ = (lowering − (a − 1)(a − r))/a = q + r + 1 − a (one division).
+    let (q, r) = div_rem(lowering, a);
+    let (y0, x0) = if r == 0 {
+        (0, q)
+    } else {
+        (a - r, (q + r + 1).checked_sub(a)?)
+    };
     // The least t ≥ 0 with x ≤ long.
-    let t = div_ceil(x0.saturating_sub(long), a - 1);
+    let t = match x0.checked_sub(long) {
+        Some(over) if over > 0 => div_ceil(over, a - 1),
+        _ => 0,
+    };
     let y = y0.checked_add(a.checked_mul(t)?)?;
     let x = x0.checked_sub((a - 1).checked_mul(t)?)?;
     (y <= short && x <= long).then_some((x, y))
