@@ -443,6 +443,30 @@ mod tests {
         }
     }
 
+    /// The floor of the bounds (all the units as the box of the shortest ramps and cruise) is
+    /// at most the move's velocity on every cycle, for mixes of every kind with early units.
+    #[test]
+    fn the_floor_is_under_the_velocity() {
+        for (a, b, jerk, acceleration, velocity, c, early) in [
+            (3u64, 7u64, 10u64, 28u64, 190u64, 14u64, [1u64, 2, 0, 1]),
+            (5, 9, 4, 18, 149, 20, [0, 1, 1, 0]),
+            (1, 6, 100, 40, 230, 8, [3, 0, 0, 0]),
+            (4, 4, 7, 1_000, 108, 9, [2, 0, 0, 0]),
+        ] {
+            let mix = Mix::solve(a, b, jerk, acceleration, velocity, true).unwrap();
+            let early = core::array::from_fn(|k| early[k].min(mix.counts[k]));
+            let main = mix.main_move(c, early);
+            let floor = main.bounds().floor;
+            assert_eq!(floor.count, mix.counts.iter().sum::<u64>());
+            for n in 0..main.total() + 2 {
+                assert!(
+                    floor.velocity_at(n) <= main.velocity_at(n),
+                    "{a} {b} at {n}"
+                );
+            }
+        }
+    }
+
     /// The mix meets the acceleration and the velocity exactly where the kinds allow it.
     #[test]
     fn mix_is_exact() {
