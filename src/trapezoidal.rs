@@ -94,12 +94,12 @@ impl TrapezoidalParameters {
 /// What the next cycle does.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Phase {
-    /// A run of the plan: the velocity (in the frame where the destination lies ahead) is
-    /// `next`, then changes by `increment` every cycle, for `count` cycles.
+    /// Heading for the destination along a plan: stepping replays its runs.
     Run,
     /// Heading for the destination from a state no plan covers (moving away from it, above the
     /// maximum velocity, or too fast to stop on it after a change): each cycle decides from
-    /// scratch, then plans again.
+    /// scratch, then plans again. (A plan that ends in such a state runs as `Decide` from the
+    /// start: its runs lead to [`ELSEWHERE`].)
     Decide,
     /// Smooth stop: decelerating to rest, destination abandoned.
     Stopping,
@@ -110,43 +110,46 @@ enum Phase {
     Stopped,
 }
 
-/// Which run of the plan is under way.
+/// One run of the plan: `count` cycles whose velocities (on the axis, signed) are `next`,
+/// `next + increment`, … (a velocity change that is constant over the run).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Stage {
-    /// Speeding up by A (the first cycle from rest by A plus the starting velocity).
-    Accelerate,
-    /// At the maximum velocity.
-    Cruise,
-    /// The first braking velocity, then D less every cycle while the leftover distance waits.
-    Brake,
-    /// One unit more than D less (the leftover distance spent), then D less every cycle.
-    Bump,
-    /// The cycle that arrives: velocity zero.
-    Arrive,
+struct Run {
+    /// The velocity of the run's next cycle, I32F32 bits.
+    next: i64,
+    /// Its change per cycle.
+    increment: i64,
+    /// Cycles left in the run (≥ 1 while it is the current run).
+    count: u64,
 }
 
-/// The braking a plan ends with, decided when the plan was made (see [`Trapezoidal::plan`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct Braking {
-    /// The first braking velocity, I32F32 bits: the largest whose stopping distance fits.
-    velocity: i64,
-    /// The distance that velocity's stopping distance leaves over, units of 2^-32 counts: at
-    /// most `segment`.
-    leftover: u64,
-    /// The segment of the stopping distance that velocity lies in: ⌊velocity / D⌋.
-    segment: u64,
+impl Run {
+    /// An empty run, left out of a plan.
+    const NONE: Self = Self {
+        next: 0,
+        increment: 0,
+        count: 0,
+    };
+    /// At rest: velocity zero for 2^64 − 1 cycles (for ever, in practice), so resting cycles
+    /// take the common path too. A plan's arriving cycle is its first.
+    const REST: Self = Self {
+        next: 0,
+        increment: 0,
+        count: u64::MAX,
+    };
+    /// The one-cycle run in slot [`ELSEWHERE`]: its cycle is [`Trapezoidal::step_otherwise`]'s.
+    const ELSEWHERE: Self = Self {
+        next: 0,
+        increment: 0,
+        count: 1,
+    };
 }
 
-/// The cycles from a decision to arrival, as runs of constant velocity change.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct Plan {
-    stage: Stage,
-    /// Cycles at the maximum velocity after the accelerating run.
-    cruise: u64,
-    /// The braking that follows, or `None` when the axis cannot stop on the destination within
-    /// D any more (after a change): then each cycle decides from scratch.
-    braking: Option<Braking>,
-}
+/// The slots of [`Trapezoidal::runs`]: a plan has at most six runs (accelerate, cruise, brake,
+/// bump, arrive, rest), and slot [`ELSEWHERE`] stands for the phases that are not a plan.
+const RUNS: usize = 8;
+/// The slot that sends the next step to [`Trapezoidal::step_otherwise`]: a one-cycle run, so the
+/// common path needs no test of the phase (its count running out is the test).
+const ELSEWHERE: usize = RUNS - 1;
 
 /// The trapezoidal point-to-point generator.
 ///
@@ -158,8 +161,10 @@ struct Plan {
 ///
 /// Those decisions are taken ahead: every command (and the cycle after a stop that resumes)
 /// works out, from the present state, on which cycle (c) will first bind and what the braking
-/// velocities will be, and stepping replays that as runs of constant velocity change. Until the
-/// next command, each cycle's velocity is exactly the one a decision from that cycle's state
+/// velocities will be, as at most five runs of constant velocity change laid out in a table, and
+/// stepping replays them: one addition and a countdown per cycle, and the cycle that ends a run
+/// moves on to the next in the table (nothing is worked out while stepping). Until the next
+/// command, each cycle's velocity is exactly the one a decision from that cycle's state
 /// would take (tested against the per-cycle decision, `tests/same_states.rs`); any command
 /// drops the plan and works it out again.
 ///
@@ -181,19 +186,13 @@ struct Plan {
 #[derive(Debug, Clone)]
 pub struct Trapezoidal {
     // The per-cycle fields first.
-    phase: Phase,
-    /// The velocity of the next cycle of the run, in the frame where the destination lies
-    /// ahead (I32F32 bits).
-    next: i64,
-    /// Its change per cycle.
-    increment: i64,
-    /// Cycles left in the run.
-    count: u64,
-    /// 0 when the destination lies in the positive direction, −1 when negative: a velocity
-    /// `v` ahead is `(v ^ sign) − sign` on the axis (two's complement negation by mask).
-    sign: i64,
+    /// The run under way: an index into `runs` (always below [`RUNS`]).
+    current: usize,
+    /// The plan's runs in order, worked out when the plan is made, so the cycle that ends one
+    /// run only moves on to the next (the last run, at rest, never ends), and [`ELSEWHERE`].
+    runs: [Run; RUNS],
     state: State,
-    plan: Plan,
+    phase: Phase,
     parameters: TrapezoidalParameters,
     profile: Profile,
     /// The destination as I32F32 bits.
@@ -222,17 +221,10 @@ impl Trapezoidal {
     ) -> Result<Self, Error> {
         let profile = parameters.profile()?;
         let mut generator = Self {
-            phase: Phase::Run,
-            next: 0,
-            increment: 0,
-            count: 0,
-            sign: 0,
+            current: 0,
+            runs: [Run::NONE; RUNS],
             state: State::at_rest(position),
-            plan: Plan {
-                stage: Stage::Arrive,
-                cruise: 0,
-                braking: None,
-            },
+            phase: Phase::Run,
             parameters,
             profile,
             destination: i64::from(parameters.destination) << 32,
@@ -471,13 +463,14 @@ impl Trapezoidal {
             deceleration,
             start_velocity,
         } = self.profile;
-        self.sign = sign;
         if distance == 0 && velocity == 0 {
-            self.rest();
+            self.phase = Phase::Run;
+            self.set_runs(0, &[Run::REST]);
             return;
         }
         if !(0..=max_velocity).contains(&velocity) {
             self.phase = Phase::Decide;
+            self.elsewhere();
             return;
         }
         // |distance| ≤ 2^63; in i128 throughout the search.
@@ -542,96 +535,67 @@ impl Trapezoidal {
         };
         let left = distance - covered(cycles);
         let braking = Self::braking_velocity(left, deceleration);
-        self.plan = Plan {
-            stage: Stage::Accelerate,
-            cruise: cycles - cycles.min(rising),
-            braking: (braking >= last - deceleration).then(|| Braking {
-                velocity: braking,
-                // < q + 1 ≤ 2^40 (the braking velocity is the largest that fits).
-                leftover: (left - Self::stopping_distance(braking, deceleration)) as u64,
-                segment: braking as u64 / deceleration as u64,
-            }),
+        // The runs in the frame where the destination lies ahead; `ahead` turns them round.
+        let ahead = |next: i64, increment: i64, count: u64| Run {
+            next: (next ^ sign) - sign,
+            increment: (increment ^ sign) - sign,
+            count,
+        };
+        let accelerate = ahead(base + acceleration, acceleration, cycles.min(rising));
+        let cruise = ahead(max_velocity, 0, cycles - cycles.min(rising));
+        if braking < last - deceleration {
+            // Too fast to stop on the destination within D after these runs (a change made it
+            // so): then decide cycle by cycle. The runs go last before `ELSEWHERE`.
+            self.phase = Phase::Decide;
+            self.set_runs(ELSEWHERE, &[accelerate, cruise]);
+            return;
+        }
+        // < q + 1 ≤ 2^40 (the braking velocity is the largest that fits).
+        let leftover = (left - Self::stopping_distance(braking, deceleration)) as u64;
+        let segment = braking as u64 / deceleration as u64;
+        // The first braking velocity, then D less for as long as the leftover is below the
+        // segment's slope: segment − leftover cycles.
+        let count = 1 + (segment - leftover);
+        let brake = ahead(braking, -deceleration, count);
+        let bump = if leftover == 0 {
+            Run::NONE
+        } else {
+            // The brake run's last velocity lies in segment `leftover` (its segment fell by one
+            // every cycle), whose slope from the next velocity down is `leftover`. The leftover
+            // buys exactly one unit: the next velocity is one unit above last − D, in segment
+            // leftover − 1, or in segment leftover if that unit reaches the segment's start
+            // (last's offset in its segment is D − 1).
+            let last = braking - (count - 1) as i64 * deceleration;
+            let offset = last as u64 - leftover * deceleration as u64;
+            let segment = leftover - 1 + u64::from(offset + 1 == deceleration as u64);
+            ahead(last - deceleration + 1, -deceleration, 1 + segment)
         };
         self.phase = Phase::Run;
-        self.set_run(base + acceleration, acceleration, cycles.min(rising));
+        // The cycle that arrives (velocity zero) is the rest run's first.
+        self.set_runs(0, &[accelerate, cruise, brake, bump, Run::REST]);
     }
 
-    fn set_run(&mut self, next: i64, increment: i64, count: u64) {
-        self.next = next;
-        self.increment = increment;
-        self.count = count;
-        if count == 0 {
-            self.end_of_run();
+    /// Lays out the runs of a plan that are not empty, from slot `at` when it is 0, or so that
+    /// the last ends just before slot `at` (then the step after them goes to `at`), and makes
+    /// the first the current run.
+    fn set_runs(&mut self, at: usize, runs: &[Run]) {
+        let mut slot = 0;
+        for run in runs.iter().filter(|run| run.count != 0) {
+            self.runs[slot] = *run;
+            slot += 1;
         }
-    }
-
-    /// The last cycle of a run, at `velocity` ahead: the next run set up, then the cycle.
-    #[cold]
-    #[inline(never)]
-    fn last_of_run(&mut self, velocity: i64) -> State {
-        self.end_of_run();
-        let velocity = (velocity ^ self.sign) - self.sign;
-        advance(&mut self.state, I32F32::from_bits(velocity))
-    }
-
-    /// The next run of the plan, once the present one is over (a few times per move).
-    #[cold]
-    #[inline(never)]
-    fn end_of_run(&mut self) {
-        let deceleration = self.profile.deceleration;
-        match self.plan.stage {
-            Stage::Accelerate => {
-                self.plan.stage = Stage::Cruise;
-                self.set_run(self.profile.max_velocity, 0, self.plan.cruise);
-            }
-            Stage::Cruise => match self.plan.braking {
-                Some(braking) => {
-                    self.plan.stage = Stage::Brake;
-                    // The first braking velocity, then D less for as long as the leftover is
-                    // below the segment's slope: segment − leftover cycles.
-                    let count = 1 + (braking.segment - braking.leftover);
-                    self.set_run(braking.velocity, -deceleration, count);
-                }
-                // Too fast to stop on the destination within D: decide cycle by cycle.
-                None => self.phase = Phase::Decide,
-            },
-            Stage::Brake => {
-                let Some(braking) = self.plan.braking else {
-                    unreachable!("a braking run has its braking")
-                };
-                // The last velocity of the run lies in segment `leftover` (its segment fell by
-                // one every cycle), whose slope from the next velocity down is `leftover`.
-                let last = self.next - self.increment;
-                if braking.leftover == 0 {
-                    self.plan.stage = Stage::Arrive;
-                    self.set_run(0, 0, 1);
-                } else {
-                    // The leftover buys exactly one unit: the next velocity is one unit above
-                    // last − D, in segment leftover − 1, or in segment leftover if that unit
-                    // reaches the segment's start (last's offset in its segment is D − 1).
-                    let offset = last as u64 - braking.leftover * deceleration as u64;
-                    let segment =
-                        braking.leftover - 1 + u64::from(offset + 1 == deceleration as u64);
-                    self.plan.stage = Stage::Bump;
-                    self.set_run(last - deceleration + 1, -deceleration, 1 + segment);
-                }
-            }
-            Stage::Bump => {
-                self.plan.stage = Stage::Arrive;
-                self.set_run(0, 0, 1);
-            }
-            Stage::Arrive => self.rest(),
+        let first = at.saturating_sub(slot);
+        if first != 0 {
+            self.runs.copy_within(0..slot, first);
         }
+        self.runs[ELSEWHERE] = Run::ELSEWHERE;
+        self.current = first;
     }
 
-    /// At rest on the destination: a run at velocity zero that never ends (2^64 cycles), so
-    /// resting cycles take the common path too (the state stays `State::at_rest`).
-    fn rest(&mut self) {
-        self.plan.stage = Stage::Arrive;
-        self.phase = Phase::Run;
-        self.next = 0;
-        self.increment = 0;
-        self.count = u64::MAX;
+    /// The next step goes to [`Self::step_otherwise`].
+    fn elsewhere(&mut self) {
+        self.runs[ELSEWHERE] = Run::ELSEWHERE;
+        self.current = ELSEWHERE;
     }
 
     /// Every cycle that is not a run of the plan: deciding from scratch, stopping.
@@ -640,8 +604,9 @@ impl Trapezoidal {
     fn step_otherwise(&mut self) -> State {
         let velocity = self.state.velocity.to_bits();
         let next = match self.phase {
-            Phase::Run => unreachable!("runs step in `step`"),
-            Phase::Decide => {
+            // A plan's runs never lead here; if one did, deciding from scratch takes the same
+            // velocity its run would.
+            Phase::Run | Phase::Decide => {
                 let (distance, sign) = self.ahead();
                 let ahead = i128::from(distance) * i128::from(sign | 1);
                 let next = (self.decide_ahead(ahead, (velocity ^ sign) - sign) ^ sign) - sign;
@@ -656,10 +621,15 @@ impl Trapezoidal {
                 self.abrupt_state = Some(state);
                 if resume {
                     self.plan();
+                } else {
+                    self.stopped();
                 }
                 return state;
             }
-            Phase::Stopped => 0,
+            Phase::Stopped => {
+                self.stopped();
+                0
+            }
             Phase::Stopping => {
                 let deceleration = self.profile.deceleration;
                 let next = if velocity > 0 {
@@ -668,7 +638,9 @@ impl Trapezoidal {
                     (velocity + deceleration).min(0)
                 };
                 if next == 0 {
-                    self.phase = Phase::Stopped;
+                    self.stopped();
+                } else {
+                    self.elsewhere();
                 }
                 next
             }
@@ -677,23 +649,31 @@ impl Trapezoidal {
         self.state = state;
         state
     }
+
+    /// Stopped (the next cycle is at rest): the rest run, so those cycles take the common path.
+    fn stopped(&mut self) {
+        self.phase = Phase::Stopped;
+        self.set_runs(0, &[Run::REST]);
+    }
 }
 
 impl ProfileGenerator for Trapezoidal {
     #[inline]
     fn step(&mut self) -> State {
-        if self.phase != Phase::Run {
-            return self.step_otherwise();
+        // `% RUNS` is free (`current` < RUNS) and spares the bounds check.
+        let current = self.current % RUNS;
+        let run = &mut self.runs[current];
+        let velocity = run.next;
+        // Every velocity of a run lies within ± the maximum velocity: no overflow.
+        run.next = velocity + run.increment;
+        run.count -= 1;
+        if run.count == 0 {
+            if current == ELSEWHERE {
+                return self.step_otherwise();
+            }
+            // The run's last cycle: the next run is already laid out.
+            self.current = current + 1;
         }
-        let velocity = self.next;
-        // Every velocity of a run lies between 0 and the maximum velocity: no overflow.
-        self.next = velocity + self.increment;
-        self.count -= 1;
-        if self.count == 0 {
-            // A call that returns the state, so the common path saves no registers.
-            return self.last_of_run(velocity);
-        }
-        let velocity = (velocity ^ self.sign) - self.sign;
         advance(&mut self.state, I32F32::from_bits(velocity))
     }
 
@@ -717,6 +697,7 @@ impl ProfileGenerator for Trapezoidal {
             }
             (StopKind::Smooth, _) => Phase::Stopping,
         };
+        self.elsewhere();
     }
 
     /// Derived from the present state, not kept by stepping: the velocity before the last cycle
