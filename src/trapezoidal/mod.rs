@@ -2,6 +2,8 @@
 //! cruise at the maximum velocity, decelerate at D and arrive exactly, deciding every cycle from
 //! the present state so that every parameter can change in motion.
 
+mod landing;
+
 use fixed::types::I32F32;
 
 use crate::format::juno::{Acceleration, TargetVelocity};
@@ -145,7 +147,8 @@ impl Run {
 }
 
 /// The slots of [`Trapezoidal::runs`]: a plan has at most six runs (accelerate, cruise, brake,
-/// bump, arrive, rest), and slot [`ELSEWHERE`] stands for the phases that are not a plan.
+/// bump, rest; or the five of a `landing` plan and rest), and slot [`ELSEWHERE`] stands for the
+/// phases that are not a plan.
 const RUNS: usize = 8;
 /// The slot that sends the next step to [`Trapezoidal::step_otherwise`]: a one-cycle run, so the
 /// common path needs no test of the phase (its count running out is the test).
@@ -161,12 +164,24 @@ const ELSEWHERE: usize = RUNS - 1;
 ///
 /// Those decisions are taken ahead: every command (and the cycle after a stop that resumes)
 /// works out, from the present state, on which cycle (c) will first bind and what the braking
-/// velocities will be, as at most five runs of constant velocity change laid out in a table, and
+/// velocities will be, as at most six runs of constant velocity change laid out in a table, and
 /// stepping replays them: one addition and a countdown per cycle, and the cycle that ends a run
 /// moves on to the next in the table (nothing is worked out while stepping). Until the next
 /// command, each cycle's velocity is exactly the one a decision from that cycle's state
 /// would take (tested against the per-cycle decision, `tests/same_states.rs`); any command
 /// drops the plan and works it out again.
+///
+/// The last moving cycle may drop to rest from up to the starting velocity S (SPEC §7), as the
+/// first may jump from rest to it. While S ≤ D that drop is an ordinary deceleration and the rule
+/// above is the whole story. With S > D the largest velocity each cycle can leave a distance that
+/// no landing covers, so the move is planned whole instead (the `landing` module): the fewest
+/// cycles the limits allow, at the highest velocities that cover the distance exactly. That plan
+/// is at most 2 cycles over the continuous-time optimum with both jumps
+/// ([`crate::reference::trapezoidal_duration`]) on most moves; on the rest (about 2 % of random
+/// moves with a starting velocity) no plan can be, as the discrete limits cost up to half a cycle
+/// more, and it is within 2.5 (`tests/trapezoidal.rs`, `fewest_moving_cycles`). A command in
+/// motion plans that way again from the present state when the axis can slow down into it, and
+/// by the per-cycle rule otherwise.
 ///
 /// ```
 /// use profilegen::format::juno::{Acceleration, TargetVelocity};
@@ -475,6 +490,30 @@ impl Trapezoidal {
         }
         // |distance| ≤ 2^63; in i128 throughout the search.
         let distance = i128::from(distance.unsigned_abs());
+        // Turns a run of the frame where the destination lies ahead round to the axis.
+        let ahead = |next: i64, increment: i64, count: u64| Run {
+            next: (next ^ sign) - sign,
+            increment: (increment ^ sign) - sign,
+            count,
+        };
+        if start_velocity > deceleration && distance > 0 {
+            // The drop from the starting velocity is more than D: the landing is planned with
+            // the move (`landing`), unless the axis is too fast for that plan's first cycle.
+            if let Some(runs) = landing::plan(
+                distance,
+                velocity,
+                max_velocity,
+                acceleration,
+                deceleration,
+                start_velocity,
+            ) {
+                let [a, b, c, d, e] =
+                    runs.map(|(next, increment, count)| ahead(next, increment, count));
+                self.phase = Phase::Run;
+                self.set_runs(0, &[a, b, c, d, e, Run::REST]);
+                return;
+            }
+        }
         let base = if velocity == 0 {
             start_velocity
         } else {
@@ -535,12 +574,6 @@ impl Trapezoidal {
         };
         let left = distance - covered(cycles);
         let braking = Self::braking_velocity(left, deceleration);
-        // The runs in the frame where the destination lies ahead; `ahead` turns them round.
-        let ahead = |next: i64, increment: i64, count: u64| Run {
-            next: (next ^ sign) - sign,
-            increment: (increment ^ sign) - sign,
-            count,
-        };
         let accelerate = ahead(base + acceleration, acceleration, cycles.min(rising));
         let cruise = ahead(max_velocity, 0, cycles - cycles.min(rising));
         if braking < last - deceleration {
@@ -710,13 +743,22 @@ impl ProfileGenerator for Trapezoidal {
         } else {
             self.profile.acceleration
         };
+        // The cycle that arrives may drop to rest from up to the starting velocity (SPEC §7).
+        let arrived = self.phase == Phase::Run
+            && self.state.velocity == I32F32::ZERO
+            && self.destination == self.state.position.to_bits();
+        let slow_down = if arrived {
+            self.profile.deceleration.max(self.profile.start_velocity)
+        } else {
+            self.profile.deceleration
+        };
         Limits {
             // A lowered maximum is reached by decelerating at D, from the velocity before.
             max_velocity: Some(I32F32::from_bits(
                 self.profile.max_velocity.max(before.abs()),
             )),
             max_speed_up: Some(I32F32::from_bits(speed_up)),
-            max_slow_down: Some(I32F32::from_bits(self.profile.deceleration)),
+            max_slow_down: Some(I32F32::from_bits(slow_down)),
             max_acceleration: None,
             max_jerk: None,
             exempt: self.abrupt_state == Some(self.state),
