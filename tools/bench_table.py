@@ -45,7 +45,7 @@ def main() -> int:
     def ratio(x: float | None, y: float | None) -> str:
         return "–" if x is None or y is None else f"{x / y:.2f}"
 
-    print("| per cycle (per step for the peers), ns: accelerate / cruise / decelerate | ns | × stepgen | × ramp-maker |")
+    print("| per cycle (per step for the peers): accelerate / cruise / decelerate | ns | × stepgen | × ramp-maker |")
     print("|---|---:|---:|---:|")
     rows = [
         ("profilegen `VelocityContouring::step`", "cost per cycle/velocity"),
