@@ -98,6 +98,86 @@ impl Envelope {
     }
 }
 
+/// The highest level c ≤ V whose cut fits in `distance`: Σ min(E_i, c) ≤ distance.
+///
+/// The cut's sum is piecewise linear in c, with a kink at every value of E: the rising values
+/// w0 + i·A and the falling ones S + j·D below V. So bisect over each progression's index for
+/// the highest value whose cut fits (at a rising value the count of rising cycles below it is
+/// known, i − 1, and only the falling one takes a division; and the other way round), then
+/// solve the line that runs from the higher of the two to the next kink: a few dozen cuts at
+/// most where bisecting c itself would take 48.
+fn highest_level(envelope: &Envelope, distance: i128, max: i128, below_max: (i128, i128)) -> i128 {
+    let n = envelope.cycles;
+    // The rising side (i ≤ up) does not depend on the level: one division.
+    let reach = envelope.landing + n * envelope.deceleration - envelope.first;
+    let up = if reach < 0 {
+        0
+    } else {
+        divide(reach, envelope.acceleration + envelope.deceleration).min(n)
+    };
+    let down = n - up;
+    // The cut at `cap` from the counts of rising and falling values below it.
+    let sum = |cap: i128, rising: i128, falling: i128| {
+        rising * envelope.first
+            + envelope.acceleration * (rising * (rising + 1) / 2)
+            + falling * envelope.landing
+            + envelope.deceleration * (falling * (falling - 1) / 2)
+            + (n - rising - falling) * cap
+    };
+    let rising_below = |cap: i128| {
+        if cap > envelope.first {
+            divide(cap - envelope.first - 1, envelope.acceleration).min(up)
+        } else {
+            0
+        }
+    };
+    let falling_below = |cap: i128| {
+        if cap > envelope.landing {
+            (divide(cap - envelope.landing - 1, envelope.deceleration) + 1).min(down)
+        } else {
+            0
+        }
+    };
+    // The largest k in 1 ..= count with fits(k), or 0 (fits is monotone, true then false).
+    let last_fitting = |count: i128, fits: &dyn Fn(i128) -> bool| {
+        let (mut low, mut high) = (0, count + 1);
+        while high - low > 1 {
+            let middle = low + (high - low) / 2;
+            if fits(middle) {
+                low = middle;
+            } else {
+                high = middle;
+            }
+        }
+        low
+    };
+    let rise = |i: i128| envelope.first + i * envelope.acceleration;
+    let fall = |j: i128| envelope.landing + j * envelope.deceleration;
+    let i = last_fitting(below_max.0.min(up), &|i| {
+        let cap = rise(i);
+        sum(cap, i - 1, falling_below(cap)) <= distance
+    });
+    let j = last_fitting(below_max.1.min(down), &|j| {
+        let cap = fall(j - 1);
+        sum(cap, rising_below(cap), j - 1) <= distance
+    });
+    // The cut at 1 is n units ≤ distance (every E_i ≥ 2^8, so n ≤ distance / 2^8).
+    let mut start = 1;
+    if i > 0 {
+        start = start.max(rise(i));
+    }
+    if j > 0 {
+        start = start.max(fall(j - 1));
+    }
+    // From `start` to the next kink the cut rises by the cycles above `start` per unit.
+    let (rising, falling) = (rising_below(start + 1), falling_below(start + 1));
+    let slope = n - rising - falling;
+    if slope == 0 {
+        return max;
+    }
+    (start + (distance - sum(start, rising, falling)) / slope).min(max)
+}
+
 /// ⌊a / b⌋ for 0 ≤ a and 0 < b, in 64 bits when both fit (a 32-bit core divides those several
 /// times faster than 128-bit ones).
 fn divide(a: i128, b: i128) -> i128 {
@@ -159,19 +239,13 @@ pub(super) fn plan(
         plateau_from + (short + max - 1) / max
     };
     envelope.cycles = high;
-    // The highest level whose cut fits: the cut at 1 is n units ≤ distance (n ≤ distance / 2^8).
-    let (mut low, mut high) = (1i128, max + 1);
-    while high - low > 1 {
-        let middle = low + (high - low) / 2;
-        if envelope.cut(middle).sum <= distance {
-            low = middle;
-        } else {
-            high = middle;
-        }
-    }
-    let level = low;
+    let level = highest_level(&envelope, distance, max, below_max);
     let cut = envelope.cut(level);
     let extra = distance - cut.sum;
+    debug_assert!(
+        cut.sum <= distance && (level == max || envelope.cut(level + 1).sum > distance),
+        "the highest level that fits"
+    );
     let at_level = envelope.cycles - cut.rising - cut.falling;
     // The cycles at the level whose envelope is exactly the level (the rest have E_i ≥ level + 1
     // and may take an extra unit): at most the first (where the rising line meets it) and the
