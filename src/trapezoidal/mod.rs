@@ -215,6 +215,9 @@ pub struct Trapezoidal {
     /// The state the last abrupt stop produced, until a command: while the generator still
     /// shows it, its last cycle was that stop (for [`ProfileGenerator::limits`]).
     abrupt_state: Option<State>,
+    /// During a smooth stop, the slot of the rest run that ends it: the stop is over once that
+    /// run is under way.
+    rest_slot: usize,
 }
 
 impl Trapezoidal {
@@ -244,6 +247,7 @@ impl Trapezoidal {
             profile,
             destination: i64::from(parameters.destination) << 32,
             abrupt_state: None,
+            rest_slot: 0,
         };
         generator.plan();
         Ok(generator)
@@ -340,13 +344,49 @@ impl Trapezoidal {
         Ok(())
     }
 
-    /// After a command: plans again if the axis is heading for the destination (a stopping or
-    /// stopped axis keeps stopping).
+    /// After a command: plans again if the axis is heading for the destination; a stopping axis
+    /// keeps stopping, at the deceleration now in force; a stopped one stays put.
     fn replan(&mut self) {
         self.abrupt_state = None;
-        if matches!(self.phase, Phase::Run | Phase::Decide) {
-            self.plan();
+        match self.phase {
+            Phase::Run | Phase::Decide => self.plan(),
+            Phase::Stopping if !self.stop_over() => self.plan_stop(),
+            _ => {}
         }
+    }
+
+    /// A smooth stop as runs, from the present state: the velocity falls by D every cycle while
+    /// it stays on its side of zero (⌈|v| / D⌉ − 1 cycles, a division once), then one cycle at
+    /// zero (the stop's last, before which the axis is not at rest yet), then rest: the
+    /// deceleration of SPEC §9 without a decision per cycle.
+    fn plan_stop(&mut self) {
+        let velocity = self.state.velocity.to_bits();
+        let deceleration = self.profile.deceleration;
+        // 0 when moving forwards (or at rest), −1 backwards: the run turned round by mask.
+        let sign = velocity >> 63;
+        let magnitude = velocity.unsigned_abs();
+        let slowing = magnitude.saturating_sub(1) / deceleration as u64;
+        let turn = |v: i64| (v ^ sign) - sign;
+        let runs = [
+            Run {
+                next: turn(magnitude as i64 - deceleration),
+                increment: turn(-deceleration),
+                count: slowing,
+            },
+            Run {
+                next: 0,
+                increment: 0,
+                count: 1,
+            },
+            Run::REST,
+        ];
+        self.set_runs(0, &runs);
+        self.rest_slot = usize::from(slowing != 0) + 1;
+    }
+
+    /// Whether a smooth stop has come to rest (its rest run under way).
+    fn stop_over(&self) -> bool {
+        self.state.velocity == I32F32::ZERO && self.current == self.rest_slot
     }
 
     /// The distance (I32F32 bits) travelled from a cycle at `velocity` ≥ 0 (that cycle
@@ -719,7 +759,8 @@ impl ProfileGenerator for Trapezoidal {
             && match self.phase {
                 Phase::Run | Phase::Decide => self.destination == self.state.position.to_bits(),
                 Phase::Stopped => true,
-                Phase::Stopping | Phase::AbruptPending { .. } => false,
+                Phase::Stopping => self.current == self.rest_slot,
+                Phase::AbruptPending { .. } => false,
             }
     }
 
@@ -730,7 +771,11 @@ impl ProfileGenerator for Trapezoidal {
             }
             (StopKind::Smooth, _) => Phase::Stopping,
         };
-        self.elsewhere();
+        if self.phase == Phase::Stopping {
+            self.plan_stop();
+        } else {
+            self.elsewhere();
+        }
     }
 
     /// Derived from the present state, not kept by stepping: the velocity before the last cycle
