@@ -255,7 +255,8 @@ pub unsafe extern "C" fn probe_trapezoid_complete() -> u32 {
 }
 
 /// Gives the stepped trapezoid a command in motion: 0 a smooth stop, 1 an abrupt stop, 2 the new
-/// destination `value` (counts).
+/// destination `value` (counts), 3 the new maximum velocity `value` (16.16 bits; refused values
+/// change nothing).
 ///
 /// # Safety
 /// `probe_trapezoid_setup` succeeded before.
@@ -266,7 +267,10 @@ pub unsafe extern "C" fn probe_trapezoid_command(command: u32, value: i32) {
     match command {
         0 => axis.stop(profilegen::StopKind::Smooth),
         1 => axis.stop(profilegen::StopKind::Abrupt),
-        _ => axis.set_destination(value),
+        2 => axis.set_destination(value),
+        _ => {
+            let _ = TargetVelocity::from_bits(value).and_then(|v| axis.set_max_velocity(v));
+        }
     }
 }
 

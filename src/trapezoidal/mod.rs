@@ -146,10 +146,11 @@ impl Run {
     };
 }
 
-/// The slots of [`Trapezoidal::runs`]: a plan has at most six runs (accelerate, cruise, brake,
-/// bump, rest; or the five of a `landing` plan and rest), and slot [`ELSEWHERE`] stands for the
-/// phases that are not a plan.
-const RUNS: usize = 8;
+/// The slots of [`Trapezoidal::runs`]: a plan has at most eight runs (moving away from the
+/// destination and the cycle that turns, then accelerate, cruise, brake, bump, rest; or the five
+/// of a `landing` plan and rest), and slot [`ELSEWHERE`] stands for the phases that are not a
+/// plan. A power of two, so that `% RUNS` is a mask.
+const RUNS: usize = 16;
 /// The slot that sends the next step to [`Trapezoidal::step_otherwise`]: a one-cycle run, so the
 /// common path needs no test of the phase (its count running out is the test).
 const ELSEWHERE: usize = RUNS - 1;
@@ -512,6 +513,58 @@ impl Trapezoidal {
     fn plan(&mut self) {
         let (distance, sign) = self.ahead();
         let velocity = (self.state.velocity.to_bits() ^ sign) - sign;
+        if velocity < 0 {
+            if let Some(()) = self.plan_turn(distance, velocity, sign) {
+                return;
+            }
+        }
+        self.plan_from(distance, velocity, sign, [Run::NONE; 2]);
+    }
+
+    /// Moving away from the destination: the per-cycle rule slows down by D while the velocity
+    /// stays on the far side of zero (or reaches it), ⌊|v| / D⌋ cycles, then turns with one cycle
+    /// at `min(v + D, A, V, braking velocity)` ([`Self::decide_ahead`]), then goes on as from
+    /// that state. All of that is worked out here, as two runs before the plan from the state
+    /// after them ([`Self::plan_from`]). `None` (decide cycle by cycle) when moving away would
+    /// take the distance past 2^31 counts, where the short way round turns the other way.
+    fn plan_turn(&mut self, distance: i64, velocity: i64, sign: i64) -> Option<()> {
+        let deceleration = self.profile.deceleration;
+        let away = velocity.unsigned_abs() / deceleration as u64;
+        let (away_wide, velocity_wide, deceleration_wide) = (
+            i128::from(away),
+            i128::from(velocity),
+            i128::from(deceleration),
+        );
+        // The distance once the away cycles are over: they cover k·v + D·k(k + 1)/2 ≤ 0.
+        let moved =
+            away_wide * velocity_wide + deceleration_wide * (away_wide * (away_wide + 1) / 2);
+        let far = i64::try_from(i128::from(distance.unsigned_abs()) - moved).ok()?;
+        let last = velocity + away as i64 * deceleration;
+        let turn = |v: i64| (v ^ sign) - sign;
+        let away_run = Run {
+            next: turn(velocity + deceleration),
+            increment: turn(deceleration),
+            count: away,
+        };
+        if last == 0 {
+            // At rest after the away cycles: a plan from rest (with the starting velocity).
+            self.plan_from(far, 0, sign, [away_run, Run::NONE]);
+            return Some(());
+        }
+        let turning = self.decide_ahead(i128::from(far), last);
+        let turn_run = Run {
+            next: turn(turning),
+            increment: 0,
+            count: 1,
+        };
+        self.plan_from(far - turning, turning, sign, [away_run, turn_run]);
+        Some(())
+    }
+
+    /// [`Self::plan`] from a state `prefix` leads to: `distance` ahead (≥ 0, I32F32 bits) and
+    /// `velocity` in that frame, `sign` the frame's direction mask; the prefix's runs go first.
+    fn plan_from(&mut self, distance: i64, velocity: i64, sign: i64, prefix: [Run; 2]) {
+        let [before, turning] = prefix;
         let Profile {
             max_velocity,
             acceleration,
@@ -520,12 +573,12 @@ impl Trapezoidal {
         } = self.profile;
         if distance == 0 && velocity == 0 {
             self.phase = Phase::Run;
-            self.set_runs(0, &[Run::REST]);
+            self.set_runs(0, &[before, turning, Run::REST]);
             return;
         }
         if !(0..=max_velocity).contains(&velocity) {
             self.phase = Phase::Decide;
-            self.elsewhere();
+            self.set_runs(ELSEWHERE, &[before, turning]);
             return;
         }
         // |distance| ≤ 2^63; in i128 throughout the search.
@@ -550,7 +603,7 @@ impl Trapezoidal {
                 let [a, b, c, d, e] =
                     runs.map(|(next, increment, count)| ahead(next, increment, count));
                 self.phase = Phase::Run;
-                self.set_runs(0, &[a, b, c, d, e, Run::REST]);
+                self.set_runs(0, &[before, turning, a, b, c, d, e, Run::REST]);
                 return;
             }
         }
@@ -620,7 +673,7 @@ impl Trapezoidal {
             // Too fast to stop on the destination within D after these runs (a change made it
             // so): then decide cycle by cycle. The runs go last before `ELSEWHERE`.
             self.phase = Phase::Decide;
-            self.set_runs(ELSEWHERE, &[accelerate, cruise]);
+            self.set_runs(ELSEWHERE, &[before, turning, accelerate, cruise]);
             return;
         }
         // < q + 1 ≤ 2^40 (the braking velocity is the largest that fits).
@@ -645,7 +698,10 @@ impl Trapezoidal {
         };
         self.phase = Phase::Run;
         // The cycle that arrives (velocity zero) is the rest run's first.
-        self.set_runs(0, &[accelerate, cruise, brake, bump, Run::REST]);
+        self.set_runs(
+            0,
+            &[before, turning, accelerate, cruise, brake, bump, Run::REST],
+        );
     }
 
     /// Lays out the runs of a plan that are not empty, from slot `at` when it is 0, or so that
