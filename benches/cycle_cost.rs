@@ -1,73 +1,128 @@
-//! Criterion benches, one group per question: the cost of one cycle of each generator (in the
-//! phases that cost most and in cruise), the cost of setting up a move, the microstep lookup, and
-//! the same move in the peers (rsruckig, s_curve, ramp-maker), in the same run.
+//! Criterion benches, one group per question:
 //!
-//! `cargo bench --bench cycle_cost`; per-cycle groups report time for 1,000 cycles
-//! (throughput in elements = cycles).
+//! - `cost per cycle`: one cycle of each generator in each phase of the bench move
+//!   (`benches/common`), timed over a window that holds only cycles of that phase (at most 1,000;
+//!   the longest run of the phase, found by stepping the move first);
+//! - `set up a move`: planning (S-curve) and validation (trapezoid);
+//! - `microstep lookup`: `MicrostepTable::outputs`;
+//! - `peers: per step`: stepgen and ramp-maker on the same move in steps, by phase windows as
+//!   above, delays per step;
+//! - `peers: per cycle` and `peers: plan`: rsruckig and s_curve on the bench move.
+//!
+//! Every window is timed from a copy already advanced to its first cycle (the set-up is not
+//! timed), and every state is folded into an accumulator that is observed once per window: the
+//! state's three fields are all computed, and nothing is stored and reloaded per cycle (a
+//! `black_box` of each state would store it to memory every cycle).
+//!
+//! `cargo bench --bench cycle_cost`; `tools/bench_table.py` prints the README's table (median
+//! nanoseconds per cycle or step, ratios to the peers) from the run's results.
 #![allow(missing_docs)] // criterion_group! generates undocumented items
 
 mod common;
 
-use criterion::{black_box, criterion_group, criterion_main, BatchSize, Criterion, Throughput};
-use profilegen::ProfileGenerator;
+use std::time::{Duration, Instant};
 
-const CYCLES: u64 = 1_000;
+use common::{generator_window, window, Phase};
+use criterion::measurement::WallTime;
+use criterion::{
+    black_box, criterion_group, criterion_main, BenchmarkGroup, Criterion, Throughput,
+};
+use profilegen::{ProfileGenerator, State};
 
-/// Times `CYCLES` steps of a copy of `start`.
-fn steps<G: ProfileGenerator + Clone>(
-    c: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+/// The longest window timed, cycles or steps.
+const WINDOW: u64 = 1_000;
+/// Windows timed between two reads of the clock, so that reading it is a small share.
+const BATCH: u64 = 16;
+
+const PHASES: [(Phase, &str); 3] = [
+    (Phase::Accelerate, "accelerate"),
+    (Phase::Cruise, "cruise"),
+    (Phase::Decelerate, "decelerate"),
+];
+
+/// A state folded into the accumulator: every field used, nothing stored.
+#[inline(always)]
+fn fold(accumulator: i64, state: State) -> i64 {
+    accumulator
+        .wrapping_add(state.position.to_bits())
+        .rotate_left(7)
+        ^ state.velocity.to_bits()
+        ^ state.acceleration.to_bits()
+}
+
+/// Times `length` calls of `step` on each of `BATCH` values from `make`, per iteration of
+/// criterion's: the values are made before the clock starts.
+fn time_windows<T, M: FnMut() -> T, S: FnMut(&mut T) -> i64>(
+    group: &mut BenchmarkGroup<'_, WallTime>,
     name: &str,
-    start: G,
+    length: u64,
+    mut make: M,
+    mut step: S,
 ) {
-    c.bench_function(name, |b| {
-        b.iter_batched_ref(
-            || start.clone(),
-            |generator| {
-                for _ in 0..CYCLES {
-                    black_box(generator.step());
+    group.throughput(Throughput::Elements(length));
+    group.bench_function(name, |b| {
+        b.iter_custom(|iterations| {
+            let mut total = Duration::ZERO;
+            let mut left = iterations;
+            while left > 0 {
+                let batch = left.min(BATCH);
+                left -= batch;
+                let mut values: Vec<T> = (0..batch).map(|_| make()).collect();
+                let start = Instant::now();
+                for value in &mut values {
+                    let mut accumulator = 0i64;
+                    for _ in 0..length {
+                        accumulator ^= step(value);
+                    }
+                    black_box(accumulator);
                 }
-            },
-            BatchSize::SmallInput,
-        )
+                total += start.elapsed();
+                drop(values);
+            }
+            total
+        })
     });
 }
 
+/// One generator's phase windows, each from a copy of `start` advanced to the window.
+fn generator_phases<G: ProfileGenerator + Clone>(
+    group: &mut BenchmarkGroup<'_, WallTime>,
+    name: &str,
+    start: &G,
+) {
+    for (phase, label) in PHASES {
+        let (first, length) = generator_window(start, phase, WINDOW);
+        if length == 0 {
+            continue;
+        }
+        let at = common::advanced(start, first);
+        time_windows(
+            group,
+            &format!("{name}/{label}"),
+            length,
+            || at.clone(),
+            |axis| fold(0, axis.step()),
+        );
+    }
+}
+
 fn cycle_cost(c: &mut Criterion) {
-    let mut group = c.benchmark_group("step (1,000 cycles)");
-    group.throughput(Throughput::Elements(CYCLES));
-    let velocity = common::velocity();
-    steps(&mut group, "velocity/ramp", velocity.clone());
-    steps(
+    let mut group = c.benchmark_group("cost per cycle");
+    // Velocity contouring cruises for ever: its deceleration is a smooth stop from cruise.
+    generator_phases(&mut group, "velocity", &common::velocity());
+    let mut velocity = common::advanced(&common::velocity(), 1_000);
+    velocity.stop(profilegen::StopKind::Smooth);
+    let (first, length) = generator_window(&velocity, Phase::Decelerate, WINDOW);
+    let at = common::advanced(&velocity, first);
+    time_windows(
         &mut group,
-        "velocity/cruise",
-        common::advanced(&velocity, 1_000),
+        "velocity/decelerate",
+        length,
+        || at.clone(),
+        |axis| fold(0, axis.step()),
     );
-    let trapezoid = common::trapezoidal();
-    steps(&mut group, "trapezoidal/accelerate", trapezoid.clone());
-    steps(
-        &mut group,
-        "trapezoidal/cruise",
-        common::advanced(&trapezoid, 3_000),
-    );
-    let decelerating = common::trapezoidal_deceleration_start() - 10;
-    steps(
-        &mut group,
-        "trapezoidal/decelerate",
-        common::advanced(&trapezoid, decelerating),
-    );
-    let scurve = common::scurve();
-    steps(&mut group, "scurve/phases I-III", scurve.clone());
-    steps(
-        &mut group,
-        "scurve/cruise",
-        common::advanced(&scurve, 3_000),
-    );
-    let end = scurve.plan().total - CYCLES;
-    steps(
-        &mut group,
-        "scurve/phases V-VII",
-        common::advanced(&scurve, end),
-    );
+    generator_phases(&mut group, "trapezoidal", &common::trapezoidal());
+    generator_phases(&mut group, "scurve", &common::scurve());
     group.finish();
 }
 
@@ -82,7 +137,7 @@ fn setup_cost(c: &mut Criterion) {
         })
     });
     let trapezoid = common::trapezoidal_parameters();
-    group.bench_function("trapezoidal/validate", |b| {
+    group.bench_function("trapezoidal/plan", |b| {
         b.iter(|| profilegen::Trapezoidal::new(black_box(trapezoid)).unwrap())
     });
     group.finish();
@@ -90,11 +145,11 @@ fn setup_cost(c: &mut Criterion) {
 
 fn microstep(c: &mut Criterion) {
     let table = common::microstep_table();
-    let mut group = c.benchmark_group("microstep lookup (1,000 positions)");
-    group.throughput(Throughput::Elements(CYCLES));
+    let mut group = c.benchmark_group("microstep lookup");
+    group.throughput(Throughput::Elements(WINDOW));
     group.bench_function("3-phase, N=256, scaled", |b| {
         b.iter(|| {
-            for position in 0..CYCLES as i32 {
+            for position in 0..WINDOW as i32 {
                 black_box(table.outputs(black_box(position * 7 - 3_000)));
             }
         })
@@ -102,9 +157,69 @@ fn microstep(c: &mut Criterion) {
     group.finish();
 }
 
-fn peers(c: &mut Criterion) {
+/// The peers' phase windows in steps, found from their delays (a shorter delay is a faster
+/// step), each timed on a fresh profile advanced to the window (they are not `Clone`).
+fn peers_per_step(c: &mut Criterion) {
     use ramp_maker::MotionProfile as _;
-    let mut group = c.benchmark_group("peers: the same move");
+    let mut group = c.benchmark_group("peers: per step");
+    let delays = |mut next: Box<dyn FnMut() -> Option<i64>>| {
+        let mut before: Option<i64> = None;
+        let mut phases = Vec::new();
+        while let Some(delay) = next() {
+            // Speed-like: the negated delay rises while accelerating.
+            let speed = -delay;
+            phases.push(before.map_or(Some(Phase::Accelerate), |b| Phase::of(b, speed)));
+            before = Some(speed);
+        }
+        phases
+    };
+    let stepgen_phases = {
+        let mut stepgen = common::peers::stepgen();
+        delays(Box::new(move || {
+            stepgen.next().filter(|&delay| delay != 0).map(i64::from)
+        }))
+    };
+    let ramp_maker_phases = {
+        let mut profile = common::peers::ramp_maker_steps();
+        delays(Box::new(move || {
+            profile.next_delay().map(|d| d.to_bits() as i64)
+        }))
+    };
+    for (phase, label) in PHASES {
+        let (first, length) = window(stepgen_phases.iter().copied(), phase, WINDOW);
+        time_windows(
+            &mut group,
+            &format!("stepgen/{label}"),
+            length,
+            || {
+                let mut stepgen = common::peers::stepgen();
+                for _ in 0..first {
+                    stepgen.next();
+                }
+                stepgen
+            },
+            |stepgen| i64::from(stepgen.next().unwrap_or(0)),
+        );
+        let (first, length) = window(ramp_maker_phases.iter().copied(), phase, WINDOW);
+        time_windows(
+            &mut group,
+            &format!("ramp-maker/{label}"),
+            length,
+            || {
+                let mut profile = common::peers::ramp_maker_steps();
+                for _ in 0..first {
+                    profile.next_delay();
+                }
+                profile
+            },
+            |profile| profile.next_delay().map_or(0, |d| d.to_bits() as i64),
+        );
+    }
+    group.finish();
+}
+
+fn peers_per_cycle(c: &mut Criterion) {
+    let mut group = c.benchmark_group("peers: plan");
     let input = common::peers::ruckig_input();
     group.bench_function("rsruckig/calculate", |b| {
         b.iter(|| common::peers::ruckig_plan(black_box(&input)))
@@ -115,50 +230,48 @@ fn peers(c: &mut Criterion) {
     });
     group.finish();
 
-    let mut group = c.benchmark_group("peers: per cycle (1,000 cycles)");
-    group.throughput(Throughput::Elements(CYCLES));
-    group.bench_function("rsruckig/update", |b| {
-        b.iter_batched_ref(
-            || {
-                (
-                    common::peers::ruckig(),
-                    common::peers::ruckig_input(),
-                    rsruckig::prelude::OutputParameter::new(None),
-                )
-            },
-            |(otg, input, output)| {
-                for _ in 0..CYCLES {
-                    black_box(otg.update(input, output).unwrap());
-                    output.pass_to_input(input);
-                }
-            },
-            BatchSize::SmallInput,
-        )
-    });
+    let mut group = c.benchmark_group("peers: per cycle");
+    time_windows(
+        &mut group,
+        "rsruckig/update",
+        WINDOW,
+        || {
+            // One cycle first: the first update plans the whole trajectory.
+            let (mut otg, mut input) = (common::peers::ruckig(), common::peers::ruckig_input());
+            let mut output = rsruckig::prelude::OutputParameter::new(None);
+            otg.update(&input, &mut output).unwrap();
+            output.pass_to_input(&mut input);
+            (otg, input, output)
+        },
+        |(otg, input, output)| {
+            otg.update(input, output).unwrap();
+            output.pass_to_input(input);
+            output.new_position[0].to_bits() as i64
+        },
+    );
     let (_, evaluate) = s_curve::s_curve_generator(
         &common::peers::s_curve_input(),
         s_curve::Derivative::Position,
     );
-    group.bench_function("s_curve/evaluate", |b| {
-        b.iter(|| {
-            for cycle in 0..CYCLES {
-                black_box(evaluate(black_box(cycle as f64)));
-            }
-        })
-    });
-    group.bench_function("ramp-maker/next_delay", |b| {
-        b.iter_batched_ref(
-            common::peers::ramp_maker,
-            |profile| {
-                for _ in 0..CYCLES {
-                    black_box(profile.next_delay());
-                }
-            },
-            BatchSize::SmallInput,
-        )
-    });
+    time_windows(
+        &mut group,
+        "s_curve/evaluate",
+        WINDOW,
+        || 0u64,
+        |cycle| {
+            *cycle += 1;
+            evaluate(black_box(*cycle as f64)).to_bits() as i64
+        },
+    );
     group.finish();
 }
 
-criterion_group!(benches, cycle_cost, setup_cost, microstep, peers);
+criterion_group!(
+    benches,
+    cycle_cost,
+    setup_cost,
+    microstep,
+    peers_per_step,
+    peers_per_cycle
+);
 criterion_main!(benches);

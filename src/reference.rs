@@ -129,12 +129,15 @@ impl VelocityContouringF64 {
 /// The continuous-time optimal duration, in cycles, of a rest-to-rest trapezoidal move of
 /// `distance` counts (> 0) with maximum velocity `max_velocity`, acceleration `acceleration`,
 /// deceleration `deceleration` (counts/cycle, counts/cycle², both > 0), where the move may start
-/// by jumping to `start_velocity` (0 … `max_velocity`).
+/// by jumping to `start_velocity` (0 … `max_velocity`) and end by dropping from it (SPEC §7): the
+/// velocity starts at s, rises at a to a peak p ≤ V, falls at d back to s, and drops.
 ///
 /// ```
 /// use profilegen::reference::trapezoidal_duration;
 /// // Triangle: 2·√(distance / a) when a = d and the maximum velocity is not reached.
 /// assert!((trapezoidal_duration(100.0, 50.0, 1.0, 1.0, 0.0) - 20.0).abs() < 1e-12);
+/// // Starting velocity = maximum velocity: cruise all the way, both jumps.
+/// assert!((trapezoidal_duration(100.0, 4.0, 1.0, 1.0, 4.0) - 25.0).abs() < 1e-12);
 /// ```
 pub fn trapezoidal_duration(
     distance: f64,
@@ -143,24 +146,19 @@ pub fn trapezoidal_duration(
     deceleration: f64,
     start_velocity: f64,
 ) -> f64 {
-    let speeding_up =
-        (max_velocity * max_velocity - start_velocity * start_velocity) / (2.0 * acceleration);
-    let slowing_down = max_velocity * max_velocity / (2.0 * deceleration);
-    if speeding_up + slowing_down <= distance {
-        return (max_velocity - start_velocity) / acceleration
-            + max_velocity / deceleration
-            + (distance - speeding_up - slowing_down) / max_velocity;
+    let (v, s) = (max_velocity, start_velocity);
+    // From s up to a peak p and back down to s: (p² − s²)·(1/2a + 1/2d).
+    let ramps = |peak: f64| {
+        (peak * peak - s * s) * (1.0 / (2.0 * acceleration) + 1.0 / (2.0 * deceleration))
+    };
+    let time = |peak: f64| (peak - s) / acceleration + (peak - s) / deceleration;
+    if ramps(v) <= distance {
+        return time(v) + (distance - ramps(v)) / v;
     }
-    // No cruise: the peak velocity p solves (p² − s²)/2a + p²/2d = distance.
-    let peak = ((distance + start_velocity * start_velocity / (2.0 * acceleration))
-        / (1.0 / (2.0 * acceleration) + 1.0 / (2.0 * deceleration)))
-        .sqrt();
-    if peak >= start_velocity {
-        (peak - start_velocity) / acceleration + peak / deceleration
-    } else {
-        // Too short to use the whole starting velocity: jump to the velocity that just stops.
-        (2.0 * distance / deceleration).sqrt()
-    }
+    // No cruise: the peak solves ramps(p) = distance (p ≥ s, so any distance has one).
+    let peak =
+        (s * s + distance / (1.0 / (2.0 * acceleration) + 1.0 / (2.0 * deceleration))).sqrt();
+    time(peak)
 }
 
 /// The continuous-time optimal duration, in cycles, of a symmetric rest-to-rest double-S

@@ -5,7 +5,8 @@
 //! from zero), with `M = 4N` microsteps per electrical cycle and φ = 90° for 2-phase motors,
 //! `M = 6N` and φ = 120° for 3-phase motors. A 16-bit motor command (power level) scales the
 //! outputs. No floating point at run time: one quarter-wave table, generated at build time, serves
-//! every resolution.
+//! every resolution; each [`MicrostepTable`] keeps its electrical cycle's outputs, scaled, so a
+//! lookup is three loads.
 
 use crate::{Error, ProfileGenerator, State};
 
@@ -14,6 +15,13 @@ include!(concat!(env!("OUT_DIR"), "/quarter_cosine.rs"));
 /// Steps per electrical cycle of the generated table (`QUARTER_COSINE` holds a quarter of them).
 const TABLE_STEPS: u32 = 3072;
 const TABLE_QUARTER: u32 = TABLE_STEPS / 4;
+
+/// The entries a table holds: an electrical cycle of M microsteps and the lead of phase A over
+/// the last phase, (phases − 1)·M/phase-count more, at most 6·256 + 2·512 = 2560 (3 phases, 256
+/// microsteps per full step); for 2 phases also M zeros, which its phase "C" reads (at most
+/// 4·256 + 256 + 1024). Rounded up to a power of two, so that masking an index with
+/// `ENTRIES − 1` is what proves it in bounds (one instruction, where a bounds check takes three).
+const ENTRIES: usize = 4096;
 
 /// Full scale of a phase output and of the motor command.
 pub const FULL_SCALE: i16 = 32767;
@@ -83,17 +91,46 @@ impl PhaseOutputs {
 /// assert_eq!(table.outputs(-64).as_slice(), [0, -32767]);
 /// # Ok::<(), profilegen::Error>(())
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+///
+/// The table holds the outputs of one electrical cycle at its motor command (8 KB, no
+/// allocation), built by [`MicrostepTable::new`] and [`MicrostepTable::with_current`], so
+/// [`MicrostepTable::outputs`] only reduces the position and loads.
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
 pub struct MicrostepTable {
     microsteps: u32,
     phases: Phases,
     current: u16,
     /// Microsteps per electrical cycle, M.
     cycle: u32,
-    /// Table steps per microstep: 3072 / M.
-    stride: u32,
     /// Microsteps between phases: M/4 (90°) or M/3 (120°).
     phase_shift: u32,
+    /// M · 2^31: added to a position, makes it non-negative (below 2^42) with the same residue
+    /// modulo M.
+    bias: u64,
+    /// ⌊2^64 / M⌋ + 1: `(x · reciprocal) >> 64` is ⌊x / M⌋ for every x < 2^42, so `outputs`
+    /// reduces a position modulo M without a division.
+    reciprocal: u64,
+    /// Where phase i's outputs begin in `entries`: phase i at microstep k (reduced, k < M) is
+    /// `entries[k + offsets[i]]`. Phase A leads by the most, so it starts furthest in; a
+    /// 2-phase table's third offset points at zeros.
+    offsets: [u32; 3],
+    /// The outputs of phase A, scaled by the motor command, from `lead` microsteps before the
+    /// cycle's start: `entries[j]` is phase A at microstep `(j − lead) mod M`, for
+    /// j < M + lead, where lead = (phases − 1)·phase_shift; zero beyond. Every phase lags A by a
+    /// multiple of the phase shift, so every phase reads M consecutive entries here, and a
+    /// lookup needs no wrap-around.
+    entries: [i16; ENTRIES],
+}
+
+/// Without the entries, which the other fields determine.
+impl core::fmt::Debug for MicrostepTable {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("MicrostepTable")
+            .field("microsteps", &self.microsteps)
+            .field("phases", &self.phases)
+            .field("current", &self.current)
+            .finish_non_exhaustive()
+    }
 }
 
 impl MicrostepTable {
@@ -112,14 +149,42 @@ impl MicrostepTable {
             Phases::Two => cycle / 4,
             Phases::Three => cycle / 3,
         };
+        let lead = match phases {
+            Phases::Two => phase_shift,
+            Phases::Three => 2 * phase_shift,
+        };
+        let offsets = match phases {
+            Phases::Two => [lead, 0, cycle + lead],
+            Phases::Three => [lead, lead - phase_shift, 0],
+        };
         Ok(Self {
             microsteps: microsteps_per_full_step,
             phases,
-            current: FULL_SCALE as u16,
+            current: 0,
             cycle,
-            stride: TABLE_STEPS / cycle,
             phase_shift,
-        })
+            bias: u64::from(cycle) << 31,
+            reciprocal: u64::MAX / u64::from(cycle) + 1,
+            offsets,
+            entries: [0; ENTRIES],
+        }
+        .scaled_to(FULL_SCALE as u16))
+    }
+
+    /// The table at motor command `current`: phase A at microstep k is
+    /// `round(C · cos(2πk/M) / 32767)`, from the correctly rounded full-scale entry at table step
+    /// k · 3072/M.
+    fn scaled_to(mut self, current: u16) -> Self {
+        self.current = current;
+        let stride = TABLE_STEPS / self.cycle;
+        // Phase A's offset is the lead; j − lead + M ≥ 0 is the microstep modulo M.
+        let lead = self.offsets[0];
+        let span = (self.cycle + lead) as usize;
+        for (j, entry) in self.entries[..span].iter_mut().enumerate() {
+            let k = (j as u32 + self.cycle - lead) % self.cycle;
+            *entry = Self::scaled(current, Self::full_scale(k * stride));
+        }
+        self
     }
 
     /// The same table with a motor command (power level) `current`.
@@ -133,7 +198,7 @@ impl MicrostepTable {
                 range: "0 … 32767",
             });
         }
-        Ok(Self { current, ..self })
+        Ok(self.scaled_to(current))
     }
 
     /// Microsteps per full step, N.
@@ -157,9 +222,7 @@ impl MicrostepTable {
     }
 
     /// The full-scale entry `round(32767 · cos(2π·index/3072))` for a table index below 2·3072,
-    /// by quarter-wave symmetry from the quarter table: exact, so the symmetry is too. The
-    /// divisors are constants (the compiler multiplies by their reciprocals): no division.
-    #[inline(always)]
+    /// by quarter-wave symmetry from the quarter table: exact, so the symmetry is too.
     fn full_scale(index: u32) -> i16 {
         let index = if index >= TABLE_STEPS {
             index - TABLE_STEPS
@@ -184,10 +247,9 @@ impl MicrostepTable {
     /// Scales a full-scale entry by the motor command: `round(C · entry / 32767)`, ties away from
     /// zero, in integers (|C · entry| < 2^30, so i32 holds it). Each scaled output is within
     /// 1 LSB of `C · cos(…)`: the entry errs by ≤ 0.5, scaled by C/32767 ≤ 1, plus ≤ 0.5 of
-    /// rounding. The divisor is a constant: a multiplication by its reciprocal, not a division.
-    #[inline(always)]
-    fn scaled(&self, entry: i16) -> i16 {
-        let product = i32::from(self.current) * i32::from(entry);
+    /// rounding.
+    fn scaled(current: u16, entry: i16) -> i16 {
+        let product = i32::from(current) * i32::from(entry);
         let full = i32::from(FULL_SCALE);
         // Round half away from zero: (2|x| + d) / 2d, truncating, then the sign back.
         let magnitude = (2 * product.unsigned_abs() + full as u32) / (2 * full as u32);
@@ -204,20 +266,22 @@ impl MicrostepTable {
     ///
     /// A 3-phase cycle (6N) does not divide 2^32, so a position register that wraps jumps in
     /// electrical angle at the wrap; 2-phase cycles (4N, a power of two) wrap seamlessly.
+    // Not inlined: one copy serves every caller (25 x86 instructions), and it stays the function
+    // that `tools/instruction_counts.sh` counts.
+    #[inline(never)]
     pub fn outputs(&self, microstep: i32) -> PhaseOutputs {
-        // The position in table steps modulo the 3072 of an electrical cycle: (microstep mod M)
-        // · stride = (microstep · stride) mod (M · stride), M · stride = 3072, a constant
-        // divisor. |microstep · stride| < 2^31 · 3072 < 2^43: i64.
-        let index = (i64::from(microstep) * i64::from(self.stride)).rem_euclid(3072) as u32;
-        // Phase i lags by i·φ: cos(2π(k − i·shift)/M); in table steps, k·stride − i·φ_t, kept
-        // non-negative by adding one cycle (φ_t ≤ 1024, i ≤ 2), and below 2·3072.
-        let lag = self.phase_shift * self.stride;
-        let a = self.scaled(Self::full_scale(index));
-        let b = self.scaled(Self::full_scale(index + TABLE_STEPS - lag));
-        let c = match self.phases {
-            Phases::Two => 0,
-            Phases::Three => self.scaled(Self::full_scale(index + TABLE_STEPS - 2 * lag)),
-        };
+        // microstep mod M = x − M·⌊x / M⌋ for x = microstep + M·2^31, which lies in
+        // 0 … 2^42 (M ≤ 1536). The floor is the high half of x·r, r = ⌊2^64/M⌋ + 1, exactly:
+        // x·r / 2^64 = x/M + x·e/(M·2^64) with 0 < e ≤ M, an excess below 2^−22 < 1/M, too
+        // little to reach the next integer (x/M lies at most 1 − 1/M past its floor). Checked
+        // against `rem_euclid` for every resolution (tests/waveform.rs).
+        let x = (i64::from(microstep) as u64).wrapping_add(self.bias);
+        let quotient = ((u128::from(x) * u128::from(self.reciprocal)) >> 64) as u64;
+        let index = (x - quotient * u64::from(self.cycle)) as usize;
+        // index < M and every offset ≤ M + lead, so the sum is below ENTRIES and the mask
+        // changes nothing; it only spares the bounds check.
+        let at = |i: usize| self.entries[(index + self.offsets[i] as usize) & (ENTRIES - 1)];
+        let (a, b, c) = (at(0), at(1), at(2));
         PhaseOutputs {
             values: [a, b, c],
             phases: self.phases,

@@ -24,7 +24,14 @@ const SOURCES: &[(&str, &str)] = &[
         include_str!("../src/scurve/schedule.rs"),
     ),
     ("src/scurve/stop.rs", include_str!("../src/scurve/stop.rs")),
-    ("src/trapezoidal.rs", include_str!("../src/trapezoidal.rs")),
+    (
+        "src/trapezoidal/mod.rs",
+        include_str!("../src/trapezoidal/mod.rs"),
+    ),
+    (
+        "src/trapezoidal/landing.rs",
+        include_str!("../src/trapezoidal/landing.rs"),
+    ),
     ("src/velocity.rs", include_str!("../src/velocity.rs")),
     ("src/state.rs", include_str!("../src/state.rs")),
     ("src/waveform.rs", include_str!("../src/waveform.rs")),

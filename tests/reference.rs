@@ -57,8 +57,13 @@ proptest! {
 fn trapezoid_optimum_by_hand() {
     // Cruise: 100 counts at v = 2, a = d = 0.5: 4 cycles up (4 counts), 4 down (4), 46 cruising.
     assert!((trapezoidal_duration(100.0, 2.0, 0.5, 0.5, 0.0) - 54.0).abs() < 1e-12);
-    // A starting velocity of 1: up from 1 to 2 takes 2 cycles and 3 counts; 4 down; 93/2 cruising.
-    assert!((trapezoidal_duration(100.0, 2.0, 0.5, 0.5, 1.0) - (2.0 + 4.0 + 46.5)).abs() < 1e-12);
+    // A starting velocity of 1, jumped to at the start and dropped from at the end (SPEC §7): up
+    // from 1 to 2 takes 2 cycles and 3 counts, down from 2 to 1 the same; 94/2 cruising.
+    assert!((trapezoidal_duration(100.0, 2.0, 0.5, 0.5, 1.0) - (2.0 + 2.0 + 47.0)).abs() < 1e-12);
+    // The same jumps, triangle: 12 counts with s = 2, a = 1, d = 2: (p² − 4)·(1/2 + 1/4) = 12,
+    // so p = √20, and the time is (p − 2)/1 + (p − 2)/2.
+    let p = 20f64.sqrt();
+    assert!((trapezoidal_duration(12.0, 100.0, 1.0, 2.0, 2.0) - 1.5 * (p - 2.0)).abs() < 1e-12);
     // Separate deceleration, triangle: peak p with p²/2 + p²/4 = 12 → p = 4; 4 up + 2 down.
     assert!((trapezoidal_duration(12.0, 100.0, 1.0, 2.0, 0.0) - 6.0).abs() < 1e-12);
 }

@@ -3,6 +3,11 @@
 //! every cycle with a square root and divisions). These tests step each new generator beside its
 //! previous implementation (`tests/previous/`, kept as it was at commit abfda4b) over random moves
 //! with random commands in motion, and require the same state on every cycle, bit for bit.
+//!
+//! The trapezoid's comparison covers the moves whose starting velocity is at most the
+//! deceleration, so that the last cycle's drop from it is an ordinary deceleration: issue #12
+//! also changed the behaviour beyond that (the move may now end with a drop from the starting
+//! velocity, `tests/trapezoidal.rs`), on purpose.
 
 mod previous;
 mod strategies;
@@ -46,10 +51,45 @@ fn command() -> impl Strategy<Value = Command> {
     ]
 }
 
-/// Gives `command` to both; a refused one (a starting velocity above the maximum) is refused
+/// The starting velocity is at most the deceleration in force (D = 0 meaning A), both as I32F32
+/// bits (16.16 and 8.24 registers): the moves whose behaviour issue #12 kept.
+fn drop_within_d(parameters: &TrapezoidalParameters) -> bool {
+    let deceleration = match parameters.deceleration.to_bits() {
+        0 => parameters.acceleration.to_bits(),
+        bits => bits,
+    };
+    i64::from(parameters.start_velocity.to_bits()) << 16 <= i64::from(deceleration) << 8
+}
+
+/// The move with its starting velocity cut to the deceleration where it was above.
+fn within_d(mut parameters: TrapezoidalParameters) -> TrapezoidalParameters {
+    if !drop_within_d(&parameters) {
+        let deceleration = match parameters.deceleration.to_bits() {
+            0 => parameters.acceleration.to_bits(),
+            bits => bits,
+        };
+        // 8.24 → 16.16, rounded down: at most the deceleration.
+        let start = i32::try_from(deceleration >> 8).unwrap_or(i32::MAX);
+        parameters.start_velocity = TargetVelocity::from_bits(start).unwrap();
+    }
+    parameters
+}
+
+/// Gives `command` to both, unless it would make the starting velocity exceed the deceleration
+/// (see the module's documentation); a refused one (a starting velocity above the maximum) is refused
 /// by the new generator and not given to the previous one.
 fn give(new: &mut Trapezoidal, old: &mut PreviousTrapezoidal, command: Command) {
     let parameters = new.parameters();
+    let mut after = old.parameters();
+    match command {
+        Command::Acceleration(a) => after.acceleration = a,
+        Command::Deceleration(d) => after.deceleration = d,
+        Command::StartVelocity(s) => after.start_velocity = s,
+        _ => {}
+    }
+    if !drop_within_d(&after) {
+        return;
+    }
     match command {
         Command::Destination(d) => {
             new.set_destination(d);
@@ -117,7 +157,7 @@ proptest! {
 
     /// Moves from rest across the register ranges, with the starting velocity, to the end.
     #[test]
-    fn trapezoid_moves_from_rest(move_ in trapezoidal_move()) {
+    fn trapezoid_moves_from_rest(move_ in trapezoidal_move().prop_map(within_d)) {
         let mut new = Trapezoidal::new(move_).unwrap();
         let mut old = PreviousTrapezoidal::new(move_);
         compare(&mut new, &mut old, 1_000_000)?;
@@ -128,7 +168,7 @@ proptest! {
     /// cycles, for moves a late command made very long).
     #[test]
     fn trapezoid_with_commands_in_motion(
-        move_ in trapezoidal_move(),
+        move_ in trapezoidal_move().prop_map(within_d),
         script in prop::collection::vec((0u64..2_000, command()), 1..8),
     ) {
         let mut new = Trapezoidal::new(move_).unwrap();

@@ -260,12 +260,176 @@ fn the_short_way_round_the_32_bit_position() {
     );
 }
 
+/// Whether any plan of `moving` cycles could cover the move from rest: cycle i (from 1) of such a
+/// plan goes at most at S + i·A (the first cycle's jump, then speed-ups of at most A), at most
+/// at max(S, D) + (moving − i)·D (slow-downs of at most D, then the last cycle's drop from at
+/// most the starting velocity, or an ordinary one of at most D), and at most at V. Summed
+/// directly, cycle by cycle, in I32F32 bits.
+fn reaches(move_: &TrapezoidalParameters, moving: u64) -> bool {
+    let v = i128::from(move_.max_velocity.to_bits()) << 16;
+    let s = i128::from(move_.start_velocity.to_bits()) << 16;
+    let a = i128::from(move_.acceleration.to_bits()) << 8;
+    let d = match move_.deceleration.to_bits() {
+        0 => a,
+        bits => i128::from(bits) << 8,
+    };
+    let landing = s.max(d);
+    let n = i128::from(moving);
+    let sum: i128 = (1..=n)
+        .map(|i| (s + i * a).min(landing + (n - i) * d).min(v))
+        .sum();
+    sum >= i128::from(move_.destination.unsigned_abs()) << 32
+}
+
+/// Issue #12's reproducer: V = S, so every moving cycle goes at most at S and n of them cover at
+/// most n·S; the distance takes ⌈7,848 · 65,536 / 1,255,096⌉ = ⌈409.79⌉ = 410 of them (fewer
+/// velocities are always free to choose), then the cycle that drops to rest: 411, where
+/// stopping at D from S took 193,958.
+#[test]
+fn stops_from_its_starting_velocity() {
+    let move_ = TrapezoidalParameters {
+        destination: 7_848,
+        max_velocity: TargetVelocity::from_bits(1_255_096).unwrap(),
+        acceleration: Acceleration::from_bits(232_518).unwrap(),
+        deceleration: Acceleration::from_bits(7).unwrap(),
+        start_velocity: TargetVelocity::from_bits(1_255_096).unwrap(),
+    };
+    let mut axis = Trapezoidal::new(move_).unwrap();
+    let states = run(&mut axis);
+    assert_eq!(states.len(), 411);
+    let last = states.last().unwrap();
+    assert_eq!(
+        (last.position, last.velocity),
+        (I32F32::from_num(7_848), I32F32::ZERO)
+    );
+    let dropped_from = states[states.len() - 2].velocity;
+    assert!(dropped_from <= I32F32::from_bits(1_255_096 << 16));
+    // The continuous optimum with both jumps is 7,848 / S = 409.79 cycles.
+    let optimum = trapezoidal_duration(
+        7_848.0,
+        1_255_096.0 / 65_536.0,
+        232_518.0 / 16_777_216.0,
+        7.0 / 16_777_216.0,
+        1_255_096.0 / 65_536.0,
+    );
+    assert!((optimum - 409.79).abs() < 0.01 && states.len() as f64 <= optimum + 2.0);
+}
+
+/// A move the +2 cycles of SPEC §7 cannot hold for once the optimum may drop from the starting
+/// velocity (found by `moves_from_rest`): the continuous optimum is 467.54 cycles, and no plan
+/// of 468 moving cycles covers the distance (`reaches`), so 469 moving cycles and the drop, 470,
+/// is the fewest the cycle-by-cycle limits allow: +2.46. The discrete plan loses half a cycle's
+/// deceleration on every cycle of its slow-down against the continuous one (the last moving
+/// cycle is at most S, where the continuous profile averages S + D/2 over its last cycle), and
+/// with A ≫ D the speed-up's half cycles do not make that up.
+#[test]
+fn fewest_moving_cycles() {
+    let move_ = TrapezoidalParameters {
+        destination: 2,
+        max_velocity: TargetVelocity::from_num(0.00435).unwrap(),
+        acceleration: Acceleration::from_num(6.73586226).unwrap(),
+        deceleration: Acceleration::from_num(0.0002406).unwrap(),
+        start_velocity: TargetVelocity::from_num(0.00035).unwrap(),
+    };
+    let mut axis = Trapezoidal::new(move_).unwrap();
+    let states = run(&mut axis);
+    assert!(!reaches(&move_, 468) && reaches(&move_, 469));
+    assert_eq!(states.len(), 470);
+    let optimum = trapezoidal_duration(
+        2.0,
+        move_.max_velocity.to_f64(),
+        move_.acceleration.to_f64(),
+        move_.deceleration.to_f64(),
+        move_.start_velocity.to_f64(),
+    );
+    assert!(
+        optimum + 2.4 < 470.0 && 470.0 < optimum + 2.5,
+        "optimum {optimum}"
+    );
+}
+
+/// 100,000 moves from rest (a fixed seed; distance log-uniform in 1 … 10^6 counts, velocity and
+/// rates log-uniform above the bounds that keep a move within ~20,000 cycles, the starting
+/// velocity uniform in 0 … V): the duration against the continuous optimum with both jumps. Every
+/// move over optimum + 2 must be at the fewest moving cycles the limits allow, and within + 2.5.
+/// Prints the figures the README quotes (`cargo test --all-features --test trapezoidal
+/// duration_survey -- --nocapture`).
+#[test]
+fn duration_survey() {
+    let mut seed: u64 = 0x1234_5678_9abc_def1;
+    let mut unit = move || {
+        // xorshift64, then the top 53 bits as a fraction of 1.
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut log_uniform = |low: f64, high: f64| (low.ln() + unit() * (high.ln() - low.ln())).exp();
+    // (moves, worst excess, sum of excesses, moves over + 2), for S > D and S ≤ D.
+    let mut figures = [(0u32, f64::MIN, 0.0, 0u32); 2];
+    for _ in 0..100_000 {
+        let distance = log_uniform(1.0, 1e6) as i32;
+        let limit = 20_000.0;
+        let velocity = log_uniform(
+            (f64::from(distance) / limit * 65_536.0).ceil().max(1.0),
+            f64::from(i32::MAX),
+        ) as i32;
+        let rate_floor = (4.0 * f64::from(distance) / (limit * limit) * 16_777_216.0)
+            .ceil()
+            .max(1.0);
+        let acceleration = log_uniform(rate_floor, f64::from(i32::MAX)) as u32;
+        let deceleration = log_uniform(rate_floor, f64::from(i32::MAX)) as u32;
+        let start = (f64::from(velocity) * (log_uniform(1.0, 2.0) - 1.0)) as i32;
+        let move_ = TrapezoidalParameters {
+            destination: distance,
+            max_velocity: TargetVelocity::from_bits(velocity).unwrap(),
+            acceleration: Acceleration::from_bits(acceleration).unwrap(),
+            deceleration: Acceleration::from_bits(deceleration).unwrap(),
+            start_velocity: TargetVelocity::from_bits(start).unwrap(),
+        };
+        let mut axis = Trapezoidal::new(move_).unwrap();
+        let mut cycles = 0u64;
+        while !axis.is_complete() {
+            axis.step();
+            cycles += 1;
+            assert!(cycles < 1_000_000, "{move_:?} does not arrive");
+        }
+        assert_eq!(axis.state().position, I32F32::from_num(distance));
+        let optimum = trapezoidal_duration(
+            f64::from(distance),
+            move_.max_velocity.to_f64(),
+            move_.acceleration.to_f64(),
+            move_.deceleration.to_f64(),
+            move_.start_velocity.to_f64(),
+        );
+        let excess = cycles as f64 - optimum;
+        if excess > 2.0 {
+            assert!(
+                excess <= 2.5 && !reaches(&move_, cycles - 2),
+                "{move_:?}: {cycles} cycles, optimum {optimum}"
+            );
+        }
+        let f =
+            &mut figures[usize::from((i64::from(start) << 16) <= (i64::from(deceleration) << 8))];
+        *f = (
+            f.0 + 1,
+            f.1.max(excess),
+            f.2 + excess,
+            f.3 + u32::from(excess > 2.0),
+        );
+    }
+    for (label, (moves, worst, sum, over)) in ["S > D", "S ≤ D"].iter().zip(figures) {
+        println!("{label}: {moves} moves, worst +{worst:.3}, mean +{:.3}, {over} over + 2 (each at the fewest cycles possible)", sum / f64::from(moves));
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(10_000))]
 
     /// Moves from rest with constant parameters: exact arrival at rest, the limits and identities
     /// on every cycle (the conformance checker), no overshoot, and at most 2 cycles more than the
-    /// continuous-time optimum.
+    /// continuous-time optimum with both jumps, except where no plan could do that (at most 2.5
+    /// more, and then no plan with one moving cycle fewer exists: see `fewest_moving_cycles`).
     #[test]
     fn moves_from_rest(move_ in trapezoidal_move()) {
         let mut axis = Trapezoidal::new(move_).unwrap();
@@ -291,7 +455,15 @@ proptest! {
             if move_.deceleration.is_zero() { move_.acceleration.to_f64() } else { move_.deceleration.to_f64() },
             move_.start_velocity.to_f64(),
         );
-        prop_assert!(cycles as f64 <= optimum + 2.0, "{} cycles, optimum {}", cycles, optimum);
+        if cycles as f64 > optimum + 2.0 {
+            // The one exception, and its limit: the discrete model itself. See
+            // `fewest_moving_cycles`: no plan of one moving cycle fewer covers the distance.
+            prop_assert!(cycles as f64 <= optimum + 2.5, "{} cycles, optimum {}", cycles, optimum);
+            prop_assert!(
+                !reaches(&move_, cycles - 2),
+                "{} cycles, optimum {}, and {} moving cycles would do", cycles, optimum, cycles - 2
+            );
+        }
     }
 
     /// Random changes in motion: identities and limits on every cycle, and the axis always

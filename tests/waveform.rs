@@ -234,3 +234,36 @@ fn same_outputs_as_the_previous_formula() {
         }
     }
 }
+
+/// The reduction modulo the electrical cycle (a multiplication by a reciprocal since issue #12) at
+/// the ends of the i32 range and around multiples of the cycle, for every resolution: the same
+/// outputs as at the position's `rem_euclid`.
+#[test]
+fn reduction_at_the_extremes() {
+    for phases in [Phases::Two, Phases::Three] {
+        for n in RESOLUTIONS {
+            let table = MicrostepTable::new(n, phases).unwrap();
+            let cycle = i64::from(table.microsteps_per_cycle());
+            let multiples = [
+                0,
+                cycle,
+                -cycle,
+                (i64::from(i32::MAX) / cycle) * cycle,
+                (i64::from(i32::MIN) / cycle) * cycle,
+            ];
+            let positions = multiples
+                .iter()
+                .flat_map(|&m| (-2..=2).map(move |d| m + d))
+                .chain([i64::from(i32::MIN), i64::from(i32::MAX)])
+                .filter_map(|p| i32::try_from(p).ok());
+            for position in positions {
+                let reduced = i64::from(position).rem_euclid(cycle) as i32;
+                assert_eq!(
+                    table.outputs(position),
+                    table.outputs(reduced),
+                    "N = {n}, {phases:?}, position {position}"
+                );
+            }
+        }
+    }
+}

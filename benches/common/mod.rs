@@ -73,6 +73,74 @@ pub fn advanced<G: ProfileGenerator + Clone>(generator: &G, cycles: u64) -> G {
     copy
 }
 
+/// A phase of a move, told from the sign of a cycle's velocity change.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Phase {
+    /// The velocity rises.
+    Accelerate,
+    /// The velocity stays, away from zero.
+    Cruise,
+    /// The velocity falls.
+    Decelerate,
+}
+
+impl Phase {
+    /// The phase of a cycle whose velocity changed from `before` to `after` (`None`: at rest).
+    pub fn of<T: PartialOrd + Default>(before: T, after: T) -> Option<Self> {
+        if after > before {
+            Some(Self::Accelerate)
+        } else if after < before {
+            Some(Self::Decelerate)
+        } else if after != T::default() {
+            Some(Self::Cruise)
+        } else {
+            None
+        }
+    }
+}
+
+/// The longest run of consecutive cycles (or steps) in `phase`, given the phase of each in
+/// order: `(first, length)`, first counted from 0, length capped at `cap`.
+pub fn window(phases: impl Iterator<Item = Option<Phase>>, phase: Phase, cap: u64) -> (u64, u64) {
+    let (mut best, mut run_start, mut run) = ((0, 0), 0, 0);
+    for (i, p) in phases.enumerate() {
+        if p == Some(phase) {
+            if run == 0 {
+                run_start = i as u64;
+            }
+            run += 1;
+            if run > best.1 {
+                best = (run_start, run);
+            }
+        } else {
+            run = 0;
+        }
+    }
+    (best.0, best.1.min(cap))
+}
+
+/// The window of `phase` in the move `generator` makes from its present state to completion
+/// (cycle `first` is the first step taken from that state).
+pub fn generator_window<G: ProfileGenerator + Clone>(
+    generator: &G,
+    phase: Phase,
+    cap: u64,
+) -> (u64, u64) {
+    let mut axis = generator.clone();
+    let mut before = axis.state().velocity;
+    // At most 100,000 cycles: velocity contouring cruises for ever.
+    let phases = (0..100_000).map_while(|_| {
+        if axis.is_complete() {
+            return None;
+        }
+        let after = axis.step().velocity;
+        let p = Phase::of(before, after);
+        before = after;
+        Some(p)
+    });
+    window(phases, phase, cap)
+}
+
 /// The cycle on which the trapezoid starts to decelerate (velocity first drops).
 pub fn trapezoidal_deceleration_start() -> u64 {
     let mut axis = trapezoidal();
@@ -130,12 +198,37 @@ pub mod peers {
         }
     }
 
+    /// Steps of the peers' per-step move: 5,000 steps with ramps of 2,000 (100 steps/cycle
+    /// reached at 2.5 steps/cycle²), short so that a window near its end is quick to reach.
+    pub const STEPS: u32 = 5_000;
+    /// The per-step move's acceleration, steps/cycle².
+    pub const STEP_ACCELERATION: f64 = 2.5;
+
+    /// stepgen's ramp for the same move in steps: a 1 MHz tick, 10,000 steps/s reached at
+    /// 25,000 steps/s² (2,000 steps), stop at step 5,000. Its delays are 24.8 ticks per step.
+    pub fn stepgen() -> stepgen::Stepgen {
+        let mut stepgen = stepgen::Stepgen::new(1_000_000);
+        stepgen.set_acceleration(25_000 << 8).unwrap();
+        stepgen.set_target_speed(10_000 << 8).unwrap();
+        stepgen.set_target_step(STEPS).unwrap();
+        stepgen
+    }
+
     /// ramp-maker's trapezoid in its default number type (U32F32 fixed point), steps per cycle.
     pub fn ramp_maker() -> ramp_maker::Trapezoidal<fixed::types::U32F32> {
         use fixed::types::U32F32;
         use ramp_maker::MotionProfile as _;
         let mut profile = ramp_maker::Trapezoidal::new(U32F32::from_num(super::ACCELERATION));
         profile.enter_position_mode(U32F32::from_num(super::VELOCITY), super::DISTANCE as u32);
+        profile
+    }
+
+    /// ramp-maker's trapezoid for the peers' per-step move (`STEPS` steps, ramps of 2,000).
+    pub fn ramp_maker_steps() -> ramp_maker::Trapezoidal<fixed::types::U32F32> {
+        use fixed::types::U32F32;
+        use ramp_maker::MotionProfile as _;
+        let mut profile = ramp_maker::Trapezoidal::new(U32F32::from_num(STEP_ACCELERATION));
+        profile.enter_position_mode(U32F32::from_num(super::VELOCITY), STEPS);
         profile
     }
 }

@@ -16,6 +16,8 @@
 //! - `probe_trapezoid_setup(words)` (destination, maximum velocity, acceleration, deceleration,
 //!   starting velocity as raw bits), `probe_trapezoid_step()`, `probe_trapezoid_complete()`:
 //!   the same for `Trapezoidal`; the setup is the measured "starting a move" (it plans).
+//! - `probe_trapezoid_command(command, value)`: a stop or a new destination in motion, so the
+//!   cycles that follow can be counted too.
 //! - `probe_selftest_panic(1)`, `probe_selftest_runaway()`: a panic and an endless loop, so the
 //!   harness can check that it catches both.
 #![no_std]
@@ -250,6 +252,26 @@ pub unsafe extern "C" fn probe_trapezoid_complete() -> u32 {
     // SAFETY: initialized by probe_trapezoid_setup (the caller's contract); single-threaded.
     let axis = unsafe { (*TRAPEZOID.0.get()).assume_init_ref() };
     u32::from(axis.is_complete())
+}
+
+/// Gives the stepped trapezoid a command in motion: 0 a smooth stop, 1 an abrupt stop, 2 the new
+/// destination `value` (counts), 3 the new maximum velocity `value` (16.16 bits; refused values
+/// change nothing).
+///
+/// # Safety
+/// `probe_trapezoid_setup` succeeded before.
+#[no_mangle]
+pub unsafe extern "C" fn probe_trapezoid_command(command: u32, value: i32) {
+    // SAFETY: initialized by probe_trapezoid_setup (the caller's contract); single-threaded.
+    let axis = unsafe { (*TRAPEZOID.0.get()).assume_init_mut() };
+    match command {
+        0 => axis.stop(profilegen::StopKind::Smooth),
+        1 => axis.stop(profilegen::StopKind::Abrupt),
+        2 => axis.set_destination(value),
+        _ => {
+            let _ = TargetVelocity::from_bits(value).and_then(|v| axis.set_max_velocity(v));
+        }
+    }
 }
 
 /// Panics when `panic` is non-zero: the harness's check that a panic is caught and located.

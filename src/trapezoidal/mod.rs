@@ -2,6 +2,8 @@
 //! cruise at the maximum velocity, decelerate at D and arrive exactly, deciding every cycle from
 //! the present state so that every parameter can change in motion.
 
+mod landing;
+
 use fixed::types::I32F32;
 
 use crate::format::juno::{Acceleration, TargetVelocity};
@@ -94,12 +96,12 @@ impl TrapezoidalParameters {
 /// What the next cycle does.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Phase {
-    /// A run of the plan: the velocity (in the frame where the destination lies ahead) is
-    /// `next`, then changes by `increment` every cycle, for `count` cycles.
+    /// Heading for the destination along a plan: stepping replays its runs.
     Run,
     /// Heading for the destination from a state no plan covers (moving away from it, above the
     /// maximum velocity, or too fast to stop on it after a change): each cycle decides from
-    /// scratch, then plans again.
+    /// scratch, then plans again. (A plan that ends in such a state runs as `Decide` from the
+    /// start: its runs lead to [`ELSEWHERE`].)
     Decide,
     /// Smooth stop: decelerating to rest, destination abandoned.
     Stopping,
@@ -110,43 +112,48 @@ enum Phase {
     Stopped,
 }
 
-/// Which run of the plan is under way.
+/// One run of the plan: `count` cycles whose velocities (on the axis, signed) are `next`,
+/// `next + increment`, … (a velocity change that is constant over the run).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Stage {
-    /// Speeding up by A (the first cycle from rest by A plus the starting velocity).
-    Accelerate,
-    /// At the maximum velocity.
-    Cruise,
-    /// The first braking velocity, then D less every cycle while the leftover distance waits.
-    Brake,
-    /// One unit more than D less (the leftover distance spent), then D less every cycle.
-    Bump,
-    /// The cycle that arrives: velocity zero.
-    Arrive,
+struct Run {
+    /// The velocity of the run's next cycle, I32F32 bits.
+    next: i64,
+    /// Its change per cycle.
+    increment: i64,
+    /// Cycles left in the run (≥ 1 while it is the current run).
+    count: u64,
 }
 
-/// The braking a plan ends with, decided when the plan was made (see [`Trapezoidal::plan`]).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct Braking {
-    /// The first braking velocity, I32F32 bits: the largest whose stopping distance fits.
-    velocity: i64,
-    /// The distance that velocity's stopping distance leaves over, units of 2^-32 counts: at
-    /// most `segment`.
-    leftover: u64,
-    /// The segment of the stopping distance that velocity lies in: ⌊velocity / D⌋.
-    segment: u64,
+impl Run {
+    /// An empty run, left out of a plan.
+    const NONE: Self = Self {
+        next: 0,
+        increment: 0,
+        count: 0,
+    };
+    /// At rest: velocity zero for 2^64 − 1 cycles (for ever, in practice), so resting cycles
+    /// take the common path too. A plan's arriving cycle is its first.
+    const REST: Self = Self {
+        next: 0,
+        increment: 0,
+        count: u64::MAX,
+    };
+    /// The one-cycle run in slot [`ELSEWHERE`]: its cycle is [`Trapezoidal::step_otherwise`]'s.
+    const ELSEWHERE: Self = Self {
+        next: 0,
+        increment: 0,
+        count: 1,
+    };
 }
 
-/// The cycles from a decision to arrival, as runs of constant velocity change.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct Plan {
-    stage: Stage,
-    /// Cycles at the maximum velocity after the accelerating run.
-    cruise: u64,
-    /// The braking that follows, or `None` when the axis cannot stop on the destination within
-    /// D any more (after a change): then each cycle decides from scratch.
-    braking: Option<Braking>,
-}
+/// The slots of [`Trapezoidal::runs`]: a plan has at most eight runs (moving away from the
+/// destination and the cycle that turns, then accelerate, cruise, brake, bump, rest; or the five
+/// of a `landing` plan and rest), and slot [`ELSEWHERE`] stands for the phases that are not a
+/// plan. A power of two, so that `% RUNS` is a mask.
+const RUNS: usize = 16;
+/// The slot that sends the next step to [`Trapezoidal::step_otherwise`]: a one-cycle run, so the
+/// common path needs no test of the phase (its count running out is the test).
+const ELSEWHERE: usize = RUNS - 1;
 
 /// The trapezoidal point-to-point generator.
 ///
@@ -158,10 +165,24 @@ struct Plan {
 ///
 /// Those decisions are taken ahead: every command (and the cycle after a stop that resumes)
 /// works out, from the present state, on which cycle (c) will first bind and what the braking
-/// velocities will be, and stepping replays that as runs of constant velocity change. Until the
-/// next command, each cycle's velocity is exactly the one a decision from that cycle's state
+/// velocities will be, as at most six runs of constant velocity change laid out in a table, and
+/// stepping replays them: one addition and a countdown per cycle, and the cycle that ends a run
+/// moves on to the next in the table (nothing is worked out while stepping). Until the next
+/// command, each cycle's velocity is exactly the one a decision from that cycle's state
 /// would take (tested against the per-cycle decision, `tests/same_states.rs`); any command
 /// drops the plan and works it out again.
+///
+/// The last moving cycle may drop to rest from up to the starting velocity S (SPEC §7), as the
+/// first may jump from rest to it. While S ≤ D that drop is an ordinary deceleration and the rule
+/// above is the whole story. With S > D the largest velocity each cycle can leave a distance that
+/// no landing covers, so the move is planned whole instead (the `landing` module): the fewest
+/// cycles the limits allow, at the highest velocities that cover the distance exactly. That plan
+/// is at most 2 cycles over the continuous-time optimum with both jumps
+/// ([`crate::reference::trapezoidal_duration`]) on most moves; on the rest (about 2 % of random
+/// moves with a starting velocity) no plan can be, as the discrete limits cost up to half a cycle
+/// more, and it is within 2.5 (`tests/trapezoidal.rs`, `fewest_moving_cycles`). A command in
+/// motion plans that way again from the present state when the axis can slow down into it, and
+/// by the per-cycle rule otherwise.
 ///
 /// ```
 /// use profilegen::format::juno::{Acceleration, TargetVelocity};
@@ -181,19 +202,13 @@ struct Plan {
 #[derive(Debug, Clone)]
 pub struct Trapezoidal {
     // The per-cycle fields first.
-    phase: Phase,
-    /// The velocity of the next cycle of the run, in the frame where the destination lies
-    /// ahead (I32F32 bits).
-    next: i64,
-    /// Its change per cycle.
-    increment: i64,
-    /// Cycles left in the run.
-    count: u64,
-    /// 0 when the destination lies in the positive direction, −1 when negative: a velocity
-    /// `v` ahead is `(v ^ sign) − sign` on the axis (two's complement negation by mask).
-    sign: i64,
+    /// The run under way: an index into `runs` (always below [`RUNS`]).
+    current: usize,
+    /// The plan's runs in order, worked out when the plan is made, so the cycle that ends one
+    /// run only moves on to the next (the last run, at rest, never ends), and [`ELSEWHERE`].
+    runs: [Run; RUNS],
     state: State,
-    plan: Plan,
+    phase: Phase,
     parameters: TrapezoidalParameters,
     profile: Profile,
     /// The destination as I32F32 bits.
@@ -201,6 +216,9 @@ pub struct Trapezoidal {
     /// The state the last abrupt stop produced, until a command: while the generator still
     /// shows it, its last cycle was that stop (for [`ProfileGenerator::limits`]).
     abrupt_state: Option<State>,
+    /// During a smooth stop, the slot of the rest run that ends it: the stop is over once that
+    /// run is under way.
+    rest_slot: usize,
 }
 
 impl Trapezoidal {
@@ -222,21 +240,15 @@ impl Trapezoidal {
     ) -> Result<Self, Error> {
         let profile = parameters.profile()?;
         let mut generator = Self {
-            phase: Phase::Run,
-            next: 0,
-            increment: 0,
-            count: 0,
-            sign: 0,
+            current: 0,
+            runs: [Run::NONE; RUNS],
             state: State::at_rest(position),
-            plan: Plan {
-                stage: Stage::Arrive,
-                cruise: 0,
-                braking: None,
-            },
+            phase: Phase::Run,
             parameters,
             profile,
             destination: i64::from(parameters.destination) << 32,
             abrupt_state: None,
+            rest_slot: 0,
         };
         generator.plan();
         Ok(generator)
@@ -333,13 +345,49 @@ impl Trapezoidal {
         Ok(())
     }
 
-    /// After a command: plans again if the axis is heading for the destination (a stopping or
-    /// stopped axis keeps stopping).
+    /// After a command: plans again if the axis is heading for the destination; a stopping axis
+    /// keeps stopping, at the deceleration now in force; a stopped one stays put.
     fn replan(&mut self) {
         self.abrupt_state = None;
-        if matches!(self.phase, Phase::Run | Phase::Decide) {
-            self.plan();
+        match self.phase {
+            Phase::Run | Phase::Decide => self.plan(),
+            Phase::Stopping if !self.stop_over() => self.plan_stop(),
+            _ => {}
         }
+    }
+
+    /// A smooth stop as runs, from the present state: the velocity falls by D every cycle while
+    /// it stays on its side of zero (⌈|v| / D⌉ − 1 cycles, a division once), then one cycle at
+    /// zero (the stop's last, before which the axis is not at rest yet), then rest: the
+    /// deceleration of SPEC §9 without a decision per cycle.
+    fn plan_stop(&mut self) {
+        let velocity = self.state.velocity.to_bits();
+        let deceleration = self.profile.deceleration;
+        // 0 when moving forwards (or at rest), −1 backwards: the run turned round by mask.
+        let sign = velocity >> 63;
+        let magnitude = velocity.unsigned_abs();
+        let slowing = magnitude.saturating_sub(1) / deceleration as u64;
+        let turn = |v: i64| (v ^ sign) - sign;
+        let runs = [
+            Run {
+                next: turn(magnitude as i64 - deceleration),
+                increment: turn(-deceleration),
+                count: slowing,
+            },
+            Run {
+                next: 0,
+                increment: 0,
+                count: 1,
+            },
+            Run::REST,
+        ];
+        self.set_runs(0, &runs);
+        self.rest_slot = usize::from(slowing != 0) + 1;
+    }
+
+    /// Whether a smooth stop has come to rest (its rest run under way).
+    fn stop_over(&self) -> bool {
+        self.state.velocity == I32F32::ZERO && self.current == self.rest_slot
     }
 
     /// The distance (I32F32 bits) travelled from a cycle at `velocity` ≥ 0 (that cycle
@@ -465,23 +513,100 @@ impl Trapezoidal {
     fn plan(&mut self) {
         let (distance, sign) = self.ahead();
         let velocity = (self.state.velocity.to_bits() ^ sign) - sign;
+        if velocity < 0 {
+            if let Some(()) = self.plan_turn(distance, velocity, sign) {
+                return;
+            }
+        }
+        self.plan_from(distance, velocity, sign, [Run::NONE; 2]);
+    }
+
+    /// Moving away from the destination: the per-cycle rule slows down by D while the velocity
+    /// stays on the far side of zero (or reaches it), ⌊|v| / D⌋ cycles, then turns with one cycle
+    /// at `min(v + D, A, V, braking velocity)` ([`Self::decide_ahead`]), then goes on as from
+    /// that state. All of that is worked out here, as two runs before the plan from the state
+    /// after them ([`Self::plan_from`]). `None` (decide cycle by cycle) when moving away would
+    /// take the distance past 2^31 counts, where the short way round turns the other way.
+    fn plan_turn(&mut self, distance: i64, velocity: i64, sign: i64) -> Option<()> {
+        let deceleration = self.profile.deceleration;
+        let away = velocity.unsigned_abs() / deceleration as u64;
+        let (away_wide, velocity_wide, deceleration_wide) = (
+            i128::from(away),
+            i128::from(velocity),
+            i128::from(deceleration),
+        );
+        // The distance once the away cycles are over: they cover k·v + D·k(k + 1)/2 ≤ 0.
+        let moved =
+            away_wide * velocity_wide + deceleration_wide * (away_wide * (away_wide + 1) / 2);
+        let far = i64::try_from(i128::from(distance.unsigned_abs()) - moved).ok()?;
+        let last = velocity + away as i64 * deceleration;
+        let turn = |v: i64| (v ^ sign) - sign;
+        let away_run = Run {
+            next: turn(velocity + deceleration),
+            increment: turn(deceleration),
+            count: away,
+        };
+        if last == 0 {
+            // At rest after the away cycles: a plan from rest (with the starting velocity).
+            self.plan_from(far, 0, sign, [away_run, Run::NONE]);
+            return Some(());
+        }
+        let turning = self.decide_ahead(i128::from(far), last);
+        let turn_run = Run {
+            next: turn(turning),
+            increment: 0,
+            count: 1,
+        };
+        self.plan_from(far - turning, turning, sign, [away_run, turn_run]);
+        Some(())
+    }
+
+    /// [`Self::plan`] from a state `prefix` leads to: `distance` ahead (≥ 0, I32F32 bits) and
+    /// `velocity` in that frame, `sign` the frame's direction mask; the prefix's runs go first.
+    fn plan_from(&mut self, distance: i64, velocity: i64, sign: i64, prefix: [Run; 2]) {
+        let [before, turning] = prefix;
         let Profile {
             max_velocity,
             acceleration,
             deceleration,
             start_velocity,
         } = self.profile;
-        self.sign = sign;
         if distance == 0 && velocity == 0 {
-            self.rest();
+            self.phase = Phase::Run;
+            self.set_runs(0, &[before, turning, Run::REST]);
             return;
         }
         if !(0..=max_velocity).contains(&velocity) {
             self.phase = Phase::Decide;
+            self.set_runs(ELSEWHERE, &[before, turning]);
             return;
         }
         // |distance| ≤ 2^63; in i128 throughout the search.
         let distance = i128::from(distance.unsigned_abs());
+        // Turns a run of the frame where the destination lies ahead round to the axis.
+        let ahead = |next: i64, increment: i64, count: u64| Run {
+            next: (next ^ sign) - sign,
+            increment: (increment ^ sign) - sign,
+            count,
+        };
+        if start_velocity > deceleration && distance > 0 {
+            // The drop from the starting velocity is more than D: the landing is planned with
+            // the move (`landing`), unless the axis is too fast for that plan's first cycle.
+            if let Some(runs) = landing::plan(
+                distance,
+                velocity,
+                max_velocity,
+                acceleration,
+                deceleration,
+                start_velocity,
+            ) {
+                let [a, b, c, d, e] =
+                    runs.map(|(next, increment, count)| ahead(next, increment, count));
+                self.phase = Phase::Run;
+                self.set_runs(0, &[before, turning, a, b, c, d, e, Run::REST]);
+                return;
+            }
+        }
         let base = if velocity == 0 {
             start_velocity
         } else {
@@ -542,96 +667,64 @@ impl Trapezoidal {
         };
         let left = distance - covered(cycles);
         let braking = Self::braking_velocity(left, deceleration);
-        self.plan = Plan {
-            stage: Stage::Accelerate,
-            cruise: cycles - cycles.min(rising),
-            braking: (braking >= last - deceleration).then(|| Braking {
-                velocity: braking,
-                // < q + 1 ≤ 2^40 (the braking velocity is the largest that fits).
-                leftover: (left - Self::stopping_distance(braking, deceleration)) as u64,
-                segment: braking as u64 / deceleration as u64,
-            }),
+        let accelerate = ahead(base + acceleration, acceleration, cycles.min(rising));
+        let cruise = ahead(max_velocity, 0, cycles - cycles.min(rising));
+        if braking < last - deceleration {
+            // Too fast to stop on the destination within D after these runs (a change made it
+            // so): then decide cycle by cycle. The runs go last before `ELSEWHERE`.
+            self.phase = Phase::Decide;
+            self.set_runs(ELSEWHERE, &[before, turning, accelerate, cruise]);
+            return;
+        }
+        // < q + 1 ≤ 2^40 (the braking velocity is the largest that fits).
+        let leftover = (left - Self::stopping_distance(braking, deceleration)) as u64;
+        let segment = braking as u64 / deceleration as u64;
+        // The first braking velocity, then D less for as long as the leftover is below the
+        // segment's slope: segment − leftover cycles.
+        let count = 1 + (segment - leftover);
+        let brake = ahead(braking, -deceleration, count);
+        let bump = if leftover == 0 {
+            Run::NONE
+        } else {
+            // The brake run's last velocity lies in segment `leftover` (its segment fell by one
+            // every cycle), whose slope from the next velocity down is `leftover`. The leftover
+            // buys exactly one unit: the next velocity is one unit above last − D, in segment
+            // leftover − 1, or in segment leftover if that unit reaches the segment's start
+            // (last's offset in its segment is D − 1).
+            let last = braking - (count - 1) as i64 * deceleration;
+            let offset = last as u64 - leftover * deceleration as u64;
+            let segment = leftover - 1 + u64::from(offset + 1 == deceleration as u64);
+            ahead(last - deceleration + 1, -deceleration, 1 + segment)
         };
         self.phase = Phase::Run;
-        self.set_run(base + acceleration, acceleration, cycles.min(rising));
+        // The cycle that arrives (velocity zero) is the rest run's first.
+        self.set_runs(
+            0,
+            &[before, turning, accelerate, cruise, brake, bump, Run::REST],
+        );
     }
 
-    fn set_run(&mut self, next: i64, increment: i64, count: u64) {
-        self.next = next;
-        self.increment = increment;
-        self.count = count;
-        if count == 0 {
-            self.end_of_run();
+    /// Lays out the runs of a plan that are not empty, from slot `at` when it is 0, or so that
+    /// the last ends just before slot `at` (then the step after them goes to `at`), and makes
+    /// the first the current run.
+    fn set_runs(&mut self, at: usize, runs: &[Run]) {
+        let mut slot = 0;
+        for run in runs.iter().filter(|run| run.count != 0) {
+            self.runs[slot] = *run;
+            slot += 1;
         }
-    }
-
-    /// The last cycle of a run, at `velocity` ahead: the next run set up, then the cycle.
-    #[cold]
-    #[inline(never)]
-    fn last_of_run(&mut self, velocity: i64) -> State {
-        self.end_of_run();
-        let velocity = (velocity ^ self.sign) - self.sign;
-        advance(&mut self.state, I32F32::from_bits(velocity))
-    }
-
-    /// The next run of the plan, once the present one is over (a few times per move).
-    #[cold]
-    #[inline(never)]
-    fn end_of_run(&mut self) {
-        let deceleration = self.profile.deceleration;
-        match self.plan.stage {
-            Stage::Accelerate => {
-                self.plan.stage = Stage::Cruise;
-                self.set_run(self.profile.max_velocity, 0, self.plan.cruise);
-            }
-            Stage::Cruise => match self.plan.braking {
-                Some(braking) => {
-                    self.plan.stage = Stage::Brake;
-                    // The first braking velocity, then D less for as long as the leftover is
-                    // below the segment's slope: segment − leftover cycles.
-                    let count = 1 + (braking.segment - braking.leftover);
-                    self.set_run(braking.velocity, -deceleration, count);
-                }
-                // Too fast to stop on the destination within D: decide cycle by cycle.
-                None => self.phase = Phase::Decide,
-            },
-            Stage::Brake => {
-                let Some(braking) = self.plan.braking else {
-                    unreachable!("a braking run has its braking")
-                };
-                // The last velocity of the run lies in segment `leftover` (its segment fell by
-                // one every cycle), whose slope from the next velocity down is `leftover`.
-                let last = self.next - self.increment;
-                if braking.leftover == 0 {
-                    self.plan.stage = Stage::Arrive;
-                    self.set_run(0, 0, 1);
-                } else {
-                    // The leftover buys exactly one unit: the next velocity is one unit above
-                    // last − D, in segment leftover − 1, or in segment leftover if that unit
-                    // reaches the segment's start (last's offset in its segment is D − 1).
-                    let offset = last as u64 - braking.leftover * deceleration as u64;
-                    let segment =
-                        braking.leftover - 1 + u64::from(offset + 1 == deceleration as u64);
-                    self.plan.stage = Stage::Bump;
-                    self.set_run(last - deceleration + 1, -deceleration, 1 + segment);
-                }
-            }
-            Stage::Bump => {
-                self.plan.stage = Stage::Arrive;
-                self.set_run(0, 0, 1);
-            }
-            Stage::Arrive => self.rest(),
+        let first = at.saturating_sub(slot);
+        if first != 0 {
+            self.runs.copy_within(0..slot, first);
         }
+        self.runs[ELSEWHERE] = Run::ELSEWHERE;
+        self.current = first;
     }
 
-    /// At rest on the destination: a run at velocity zero that never ends (2^64 cycles), so
-    /// resting cycles take the common path too (the state stays `State::at_rest`).
-    fn rest(&mut self) {
-        self.plan.stage = Stage::Arrive;
-        self.phase = Phase::Run;
-        self.next = 0;
-        self.increment = 0;
-        self.count = u64::MAX;
+    /// The next step goes to [`Self::step_otherwise`].
+    fn elsewhere(&mut self) {
+        self.runs[ELSEWHERE] = Run::ELSEWHERE;
+        self.current = ELSEWHERE;
     }
 
     /// Every cycle that is not a run of the plan: deciding from scratch, stopping.
@@ -640,8 +733,9 @@ impl Trapezoidal {
     fn step_otherwise(&mut self) -> State {
         let velocity = self.state.velocity.to_bits();
         let next = match self.phase {
-            Phase::Run => unreachable!("runs step in `step`"),
-            Phase::Decide => {
+            // A plan's runs never lead here; if one did, deciding from scratch takes the same
+            // velocity its run would.
+            Phase::Run | Phase::Decide => {
                 let (distance, sign) = self.ahead();
                 let ahead = i128::from(distance) * i128::from(sign | 1);
                 let next = (self.decide_ahead(ahead, (velocity ^ sign) - sign) ^ sign) - sign;
@@ -656,10 +750,15 @@ impl Trapezoidal {
                 self.abrupt_state = Some(state);
                 if resume {
                     self.plan();
+                } else {
+                    self.stopped();
                 }
                 return state;
             }
-            Phase::Stopped => 0,
+            Phase::Stopped => {
+                self.stopped();
+                0
+            }
             Phase::Stopping => {
                 let deceleration = self.profile.deceleration;
                 let next = if velocity > 0 {
@@ -668,7 +767,9 @@ impl Trapezoidal {
                     (velocity + deceleration).min(0)
                 };
                 if next == 0 {
-                    self.phase = Phase::Stopped;
+                    self.stopped();
+                } else {
+                    self.elsewhere();
                 }
                 next
             }
@@ -677,23 +778,31 @@ impl Trapezoidal {
         self.state = state;
         state
     }
+
+    /// Stopped (the next cycle is at rest): the rest run, so those cycles take the common path.
+    fn stopped(&mut self) {
+        self.phase = Phase::Stopped;
+        self.set_runs(0, &[Run::REST]);
+    }
 }
 
 impl ProfileGenerator for Trapezoidal {
     #[inline]
     fn step(&mut self) -> State {
-        if self.phase != Phase::Run {
-            return self.step_otherwise();
+        // `% RUNS` is free (`current` < RUNS) and spares the bounds check.
+        let current = self.current % RUNS;
+        let run = &mut self.runs[current];
+        let velocity = run.next;
+        // Every velocity of a run lies within ± the maximum velocity: no overflow.
+        run.next = velocity + run.increment;
+        run.count -= 1;
+        if run.count == 0 {
+            if current == ELSEWHERE {
+                return self.step_otherwise();
+            }
+            // The run's last cycle: the next run is already laid out.
+            self.current = current + 1;
         }
-        let velocity = self.next;
-        // Every velocity of a run lies between 0 and the maximum velocity: no overflow.
-        self.next = velocity + self.increment;
-        self.count -= 1;
-        if self.count == 0 {
-            // A call that returns the state, so the common path saves no registers.
-            return self.last_of_run(velocity);
-        }
-        let velocity = (velocity ^ self.sign) - self.sign;
         advance(&mut self.state, I32F32::from_bits(velocity))
     }
 
@@ -706,7 +815,8 @@ impl ProfileGenerator for Trapezoidal {
             && match self.phase {
                 Phase::Run | Phase::Decide => self.destination == self.state.position.to_bits(),
                 Phase::Stopped => true,
-                Phase::Stopping | Phase::AbruptPending { .. } => false,
+                Phase::Stopping => self.current == self.rest_slot,
+                Phase::AbruptPending { .. } => false,
             }
     }
 
@@ -717,6 +827,11 @@ impl ProfileGenerator for Trapezoidal {
             }
             (StopKind::Smooth, _) => Phase::Stopping,
         };
+        if self.phase == Phase::Stopping {
+            self.plan_stop();
+        } else {
+            self.elsewhere();
+        }
     }
 
     /// Derived from the present state, not kept by stepping: the velocity before the last cycle
@@ -729,13 +844,22 @@ impl ProfileGenerator for Trapezoidal {
         } else {
             self.profile.acceleration
         };
+        // The cycle that arrives may drop to rest from up to the starting velocity (SPEC §7).
+        let arrived = self.phase == Phase::Run
+            && self.state.velocity == I32F32::ZERO
+            && self.destination == self.state.position.to_bits();
+        let slow_down = if arrived {
+            self.profile.deceleration.max(self.profile.start_velocity)
+        } else {
+            self.profile.deceleration
+        };
         Limits {
             // A lowered maximum is reached by decelerating at D, from the velocity before.
             max_velocity: Some(I32F32::from_bits(
                 self.profile.max_velocity.max(before.abs()),
             )),
             max_speed_up: Some(I32F32::from_bits(speed_up)),
-            max_slow_down: Some(I32F32::from_bits(self.profile.deceleration)),
+            max_slow_down: Some(I32F32::from_bits(slow_down)),
             max_acceleration: None,
             max_jerk: None,
             exempt: self.abrupt_state == Some(self.state),
