@@ -25,9 +25,11 @@ pub struct TrapezoidalParameters {
     pub start_velocity: TargetVelocity,
 }
 
-const START_VELOCITY_RANGE: &str = "0 … the maximum velocity, counts/cycle (16.16)";
-const MAX_VELOCITY_RANGE: &str =
-    "0.00002 … 32767.99998 counts/cycle, and at least the starting velocity (16.16)";
+/// A maximum velocity: the positive half of the 16.16 register.
+const MAX_VELOCITY_RANGE: crate::Range = crate::Range {
+    min: 0.0,
+    ..TargetVelocity::RANGE
+};
 
 /// The limits, validated, as I32F32 bits (a separate value from the per-cycle state).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -60,6 +62,7 @@ impl TrapezoidalParameters {
         if max_velocity < 0 {
             return Err(Error::OutOfRange {
                 parameter: "velocity",
+                value: self.max_velocity.to_f64(),
                 range: MAX_VELOCITY_RANGE,
             });
         }
@@ -71,9 +74,14 @@ impl TrapezoidalParameters {
         }
         let start_velocity = i64::from(self.start_velocity.to_bits());
         if !(0..=max_velocity).contains(&start_velocity) {
+            // 0 … the maximum velocity.
             return Err(Error::OutOfRange {
                 parameter: "start velocity",
-                range: START_VELOCITY_RANGE,
+                value: self.start_velocity.to_f64(),
+                range: crate::Range {
+                    max: self.max_velocity.to_f64(),
+                    ..MAX_VELOCITY_RANGE
+                },
             });
         }
         let acceleration = i64::from(self.acceleration.to_bits()) << 8;

@@ -130,7 +130,8 @@ impl MicrostepTable {
         if current > FULL_SCALE as u16 {
             return Err(Error::OutOfRange {
                 parameter: "current",
-                range: "0 … 32767",
+                value: f64::from(current),
+                range: crate::Range::of_register(0, FULL_SCALE as i64, 0, ""),
             });
         }
         Ok(Self { current, ..self })

@@ -138,7 +138,8 @@ pub fn destination(value: f64) -> Result<i32, Error> {
         .map(I32F0::to_num)
         .ok_or(Error::OutOfRange {
             parameter: "destination",
-            range: "-2147483648 … 2147483647 counts",
+            value,
+            range: profilegen::Range::of_register(i32::MIN.into(), i32::MAX.into(), 0, "counts"),
         })
 }
 
@@ -221,6 +222,7 @@ pub fn option_of(error: &Error) -> String {
     let parameter = match *error {
         Error::OutOfRange { parameter, .. }
         | Error::NotFinite { parameter, .. }
+        | Error::Underflow { parameter, .. }
         | Error::Zero { parameter, .. } => parameter,
         _ => "value",
     };
