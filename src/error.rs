@@ -19,12 +19,11 @@ use core::fmt;
 ///      319999999.85 counts/s"
 /// );
 /// ```
-#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub enum Error {
     /// The value, rounded to the register, lies outside the register's range (this includes a
     /// negative value for an unsigned register).
-    #[error("{parameter} {} is out of range: the legal range is {range}", Given(*.value, range.unit))]
     OutOfRange {
         /// The parameter (register) that was being set.
         parameter: &'static str,
@@ -34,7 +33,6 @@ pub enum Error {
         range: Range,
     },
     /// The value was NaN or infinite.
-    #[error("{parameter} {value} is not a finite number: the legal range is {range}")]
     NotFinite {
         /// The parameter (register) that was being set.
         parameter: &'static str,
@@ -46,11 +44,6 @@ pub enum Error {
     /// A non-zero value so small that it rounds to a zero register: zero would silently stand in
     /// for what was asked (a zero rate that means "use the acceleration", a move that can't
     /// start), so it is refused instead.
-    #[error(
-        "{parameter} {} rounds to 0 in the register, whose resolution is {} {}: give 0 itself \
-         or a magnitude above half the resolution (the legal range is {range})",
-        Given(*.value, range.unit), Bound(range.resolution), range.unit
-    )]
     Underflow {
         /// The parameter (register) that was being set.
         parameter: &'static str,
@@ -61,10 +54,6 @@ pub enum Error {
     },
     /// Zero is a legal register value but not a legal profile parameter (SPEC §3): a move needs a
     /// non-zero maximum velocity, acceleration and jerk.
-    #[error(
-        "{parameter} is 0, and a move needs a non-zero one: from {} to {} {}",
-        Bound(range.resolution), Bound(range.max), range.unit
-    )]
     Zero {
         /// The parameter that was zero.
         parameter: &'static str,
@@ -74,7 +63,6 @@ pub enum Error {
     },
     /// The generator refused the command in its present state, as the chip would (for example an
     /// S-curve parameter change while the axis is moving: the MC1451A "command error").
-    #[error("command error: {parameter} cannot be changed {reason}")]
     Refused {
         /// The parameter whose change was refused.
         parameter: &'static str,
@@ -83,7 +71,6 @@ pub enum Error {
     },
     /// No move within the limits reaches the target (for example a destination one raw unit
     /// away with a jerk of one raw unit, which would need a jerk of two).
-    #[error("{parameter} cannot be reached: {reason}")]
     Unreachable {
         /// The parameter whose value cannot be reached.
         parameter: &'static str,
@@ -91,17 +78,87 @@ pub enum Error {
         reason: &'static str,
     },
     /// A microstep resolution that the waveform table does not support.
-    #[error("microsteps per full step is {value}: the legal values are 1, 2, 4, 8, 16, 32, 64, 128, 256")]
     Microsteps {
         /// The value that was given.
         value: u32,
     },
     /// A motor phase count that the waveform table does not support.
-    #[error("phase count is {value}: the legal values are 2 and 3")]
     Phases {
         /// The value that was given.
         value: u32,
     },
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            Error::OutOfRange {
+                parameter,
+                value,
+                range,
+            } => write!(
+                f,
+                "{parameter} {} is out of range: the legal range is {range}",
+                Given(value, range.unit)
+            ),
+            Error::NotFinite {
+                parameter,
+                value,
+                range,
+            } => write!(
+                f,
+                "{parameter} {value} is not a finite number: the legal range is {range}"
+            ),
+            Error::Underflow {
+                parameter,
+                value,
+                range,
+            } => write!(
+                f,
+                "{parameter} {} rounds to 0 in the register, whose resolution is {}{}: give 0 \
+                 itself or a magnitude above half the resolution (the legal range is {range})",
+                Given(value, range.unit),
+                Bound(range.resolution),
+                Unit(range.unit)
+            ),
+            Error::Zero { parameter, range } => write!(
+                f,
+                "{parameter} is 0, and a move needs a non-zero one: from {} to {}{}",
+                Bound(range.resolution),
+                Bound(range.max),
+                Unit(range.unit)
+            ),
+            Error::Refused { parameter, reason } => {
+                write!(f, "command error: {parameter} cannot be changed {reason}")
+            }
+            Error::Unreachable { parameter, reason } => {
+                write!(f, "{parameter} cannot be reached: {reason}")
+            }
+            Error::Microsteps { value } => write!(
+                f,
+                "microsteps per full step is {value}: the legal values are 1, 2, 4, 8, 16, 32, \
+                 64, 128, 256"
+            ),
+            Error::Phases { value } => {
+                write!(f, "phase count is {value}: the legal values are 2 and 3")
+            }
+        }
+    }
+}
+
+/// `core::error::Error`, so `?` turns an `Error` into a `Box<dyn Error>` (with or without `std`).
+impl core::error::Error for Error {}
+
+/// A unit after a number: a space and the unit, or nothing for a ratio.
+struct Unit(&'static str);
+
+impl fmt::Display for Unit {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.0 {
+            "" => Ok(()),
+            unit => write!(f, " {unit}"),
+        }
+    }
 }
 
 impl Error {
@@ -202,17 +259,11 @@ impl Range {
 
 impl fmt::Display for Range {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let space = if self.unit.is_empty() { "" } else { " " };
+        let unit = Unit(self.unit);
         match (self.min.is_finite(), self.max.is_finite()) {
-            (false, false) => write!(f, "any finite value{space}{}", self.unit),
-            (true, false) => write!(f, "above {}{space}{}", Bound(self.min), self.unit),
-            _ => write!(
-                f,
-                "{} … {}{space}{}",
-                Bound(self.min),
-                Bound(self.max),
-                self.unit
-            ),
+            (false, false) => write!(f, "any finite value{unit}"),
+            (true, false) => write!(f, "above {}{unit}", Bound(self.min)),
+            _ => write!(f, "{} … {}{unit}", Bound(self.min), Bound(self.max)),
         }
     }
 }
@@ -226,14 +277,10 @@ impl fmt::Display for Given {
         let magnitude = if value < 0.0 { -value } else { value };
         // Plain decimals for everyday magnitudes; `1e-300` rather than three hundred zeros.
         if value == 0.0 || (1e-6..1e16).contains(&magnitude) {
-            write!(f, "{value}")?;
+            write!(f, "{value}{}", Unit(unit))
         } else {
-            write!(f, "{value:e}")?;
+            write!(f, "{value:e}{}", Unit(unit))
         }
-        if !unit.is_empty() {
-            write!(f, " {unit}")?;
-        }
-        Ok(())
     }
 }
 
