@@ -413,7 +413,14 @@ fn draw(
             chart
                 .draw_series(std::iter::empty::<PathElement<(f64, f64)>>())?
                 .label("phase boundary (S-curve plan, phases I–VII)")
-                .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], boundary));
+                .legend(move |(x, y)| {
+                    plotters::element::DashedPathElement::new(
+                        [(x, y), (x + 20, y)],
+                        4,
+                        4,
+                        boundary.stroke_width(1),
+                    )
+                });
         }
         chart
             .configure_series_labels()
