@@ -162,6 +162,22 @@ impl fmt::Display for Unit {
 }
 
 impl Error {
+    /// [`Error::OutOfRange`] for a register value given as raw bits with `frac_bits` fractional
+    /// bits. The conversion to a real number happens here, at the edge, so the generators that
+    /// report such errors stay free of floating point (SPEC §16).
+    pub(crate) fn out_of_range_bits(
+        parameter: &'static str,
+        bits: i64,
+        frac_bits: u32,
+        range: Range,
+    ) -> Self {
+        Error::OutOfRange {
+            parameter,
+            value: Range::real(bits, frac_bits),
+            range,
+        }
+    }
+
     /// The same error for a value the caller gave in other units: `value` as given, and the range
     /// multiplied by `factor` (caller's units per register unit) in `unit`. Physical-unit
     /// conversions use it so an input in counts/s is answered in counts/s.
@@ -244,6 +260,21 @@ impl Range {
             resolution,
             unit,
         }
+    }
+
+    /// The same range up to a register value given as raw bits with `frac_bits` fractional bits
+    /// (e.g. a starting velocity's limit, the maximum velocity); see
+    /// [`Error::out_of_range_bits`] for why raw.
+    pub(crate) fn up_to_bits(self, bits: i64, frac_bits: u32) -> Self {
+        Self {
+            max: Self::real(bits, frac_bits),
+            ..self
+        }
+    }
+
+    /// Raw bits as a real number (exact for the registers' at most 32 significant bits).
+    const fn real(bits: i64, frac_bits: u32) -> f64 {
+        bits as f64 / (1u64 << frac_bits) as f64
     }
 
     /// The same range with every bound multiplied by `factor` (> 0), in `unit`.

@@ -60,11 +60,12 @@ impl TrapezoidalParameters {
             });
         }
         if max_velocity < 0 {
-            return Err(Error::OutOfRange {
-                parameter: "velocity",
-                value: self.max_velocity.to_f64(),
-                range: MAX_VELOCITY_RANGE,
-            });
+            return Err(Error::out_of_range_bits(
+                "velocity",
+                max_velocity,
+                16,
+                MAX_VELOCITY_RANGE,
+            ));
         }
         if self.acceleration.is_zero() {
             return Err(Error::Zero {
@@ -74,15 +75,13 @@ impl TrapezoidalParameters {
         }
         let start_velocity = i64::from(self.start_velocity.to_bits());
         if !(0..=max_velocity).contains(&start_velocity) {
-            // 0 … the maximum velocity.
-            return Err(Error::OutOfRange {
-                parameter: "start velocity",
-                value: self.start_velocity.to_f64(),
-                range: crate::Range {
-                    max: self.max_velocity.to_f64(),
-                    ..MAX_VELOCITY_RANGE
-                },
-            });
+            // 0 … the maximum velocity (16.16 bits, like the starting velocity).
+            return Err(Error::out_of_range_bits(
+                "start velocity",
+                start_velocity,
+                16,
+                MAX_VELOCITY_RANGE.up_to_bits(max_velocity, 16),
+            ));
         }
         let acceleration = i64::from(self.acceleration.to_bits()) << 8;
         let deceleration = match self.deceleration.to_bits() {
