@@ -28,7 +28,7 @@ USAGE:
 MODE and the profile options, events and --cycles: as profile_table (its --help has them all):
     velocity | trapezoidal | scurve
     --velocity V --acceleration A --deceleration D --jerk J --destination X --start-velocity S
-    --event N:KEY=VALUE[,KEY=VALUE…]   --cycles N
+    --event N:KEY=VALUE[,KEY=VALUE…]   --cycles N (at most 100,000,000 here)
 
 OPTIONS of the plot:
     --output FILE        the SVG to write (required)
@@ -51,6 +51,8 @@ const MARGIN: u32 = 20;
 /// Wider on the right, so the last tick label of the time and cycle axes is not clipped.
 const MARGIN_RIGHT: u32 = 50;
 const COLUMNS: usize = (SIZE.0 - Y_LABELS_WIDTH - MARGIN - MARGIN_RIGHT) as usize;
+/// The longest `--cycles` a plot takes (each pass steps 100,000,000 cycles in about a second).
+const MAX_PLOTTED: u64 = 100_000_000;
 
 fn main() -> ExitCode {
     let arguments: Vec<OsString> = std::env::args_os().skip(1).collect();
@@ -62,6 +64,13 @@ fn main() -> ExitCode {
         Ok(Request::Run(options)) => options,
         Err(message) => return fail(&message, cli::USAGE),
     };
+    // Two passes over the run: a length that takes minutes to step is refused up front.
+    if let Some(cycles) = options.cycles.filter(|&cycles| cycles > MAX_PLOTTED) {
+        return fail(
+            &format!("--cycles '{cycles}': a plot steps at most {MAX_PLOTTED} cycles"),
+            cli::USAGE,
+        );
+    }
     let generator = match cli::generator(&options) {
         Ok(generator) => generator,
         Err(message) => return fail(&message, cli::USAGE),
