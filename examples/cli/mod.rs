@@ -484,7 +484,7 @@ impl Generator {
                         .map_or(Ok(old.max_acceleration), ScurveAcceleration::from_num)?,
                     jerk: given(Key::Jerk).map_or(Ok(old.jerk), Jerk::from_num)?,
                 };
-                if given(Key::Velocity).is_none() {
+                if given(Key::Destination).is_some() && given(Key::Velocity).is_none() {
                     // Without a velocity the chip's rules for a lone destination hold (refused
                     // after a stop, which cleared the velocity register): asked of a copy.
                     axis.clone().set_destination(parameters.destination)?;
