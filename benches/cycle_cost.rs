@@ -14,7 +14,7 @@
 //! state's three fields are all computed, and nothing is stored and reloaded per cycle (a
 //! `black_box` of each state would store it to memory every cycle).
 //!
-//! `cargo bench --bench cycle_cost`; `tools/bench_table.py` prints the README's table (median
+//! `cargo bench -p profilegen-benches --bench cycle_cost`; `tools/bench_table.py` prints the README's table (median
 //! nanoseconds per cycle or step, ratios to the peers) from the run's results.
 #![allow(missing_docs)] // criterion_group! generates undocumented items
 

@@ -3,9 +3,10 @@
 //! same moves in floating point, and the planned durations against the continuous optimum.
 //!
 //! ```text
-//! cargo bench --bench planning                # 100,000 moves
-//! cargo bench --bench planning -- --quick     # 10,000 moves
-//! cargo bench --bench planning -- 250000      # any number (or PLANNING_MOVES=250000)
+//! cargo bench -p profilegen-benches --bench planning               # 100,000 moves
+//! cargo bench -p profilegen-benches --bench planning -- --quick    # 10,000 moves
+//! cargo bench -p profilegen-benches --bench planning -- 250000     # any number
+//! PLANNING_MOVES=250000 cargo bench -p profilegen-benches --bench planning
 //! ```
 //!
 //! Each move is timed with `std::time::Instant` as the minimum of `REPETITIONS` runs (to reject

@@ -1,27 +1,73 @@
 //! The `profile_table` command line (SPEC §13): runs one generator from its options and a script
-//! of timed events, and prints its states, one row per cycle.
+//! of timed events, and prints its states, one row per cycle, as they are computed.
 //!
-//! ```text
-//! cargo run --release --example profile_table -- <MODE> [OPTIONS]
-//! MODE: velocity | trapezoidal | scurve
-//!   --velocity V  --acceleration A  --deceleration D  --jerk J  --destination X
-//!   --start-velocity S  --event N:KEY=VALUE (repeatable)  --cycles N  --every K
-//!   --format table|csv|raw
-//! ```
-//!
-//! An event `N:KEY=VALUE` is applied before cycle N is stepped, so it first shows in row N (row 0
-//! is the initial state; events at 0 and 1 both apply before the first step). Without `--cycles`
-//! the run ends on the first cycle on which the generator is complete and no event is left, at
-//! most 10,000,000 cycles. Bad arguments: one line on stderr, exit status 2, nothing on stdout. An
-//! event the chip's rules refuse: one line on stderr, and the run goes on unchanged.
+//! `cargo run --release --example profile_table -- --help` prints the usage below.
 
+use std::ffi::OsString;
 use std::io::{self, BufWriter, Write};
 use std::process::ExitCode;
 
 mod cli;
 
-use cli::{build, check_event, parse_args, simulate, Axis, Format, Options};
+use cli::{Ending, Format, Options, Program, Request};
 use profilegen::State;
+
+const HELP: &str = "\
+profile_table: one motion-profile generator, cycle by cycle (SPEC §13)
+
+USAGE:
+    cargo run --release --example profile_table -- <MODE> [OPTIONS]
+
+MODE:
+    velocity       Juno velocity contouring      needs --velocity --acceleration
+    trapezoidal    trapezoidal point-to-point    needs --destination --velocity --acceleration
+    scurve         MC1451A S-curve               needs --destination --velocity --acceleration --jerk
+
+OPTIONS (values are decimals in per-cycle units, rounded to the mode's registers):
+    --velocity V         counts/cycle (velocity mode: signed target; others: maximum)
+    --acceleration A     counts/cycle²
+    --deceleration D     counts/cycle² (velocity, trapezoidal; default 0 = use A)
+    --jerk J             counts/cycle³ (scurve)
+    --destination X      counts (trapezoidal, scurve)
+    --start-velocity S   counts/cycle (trapezoidal; default 0)
+    --event N:KEY=VALUE[,KEY=VALUE…]
+                         before cycle N is stepped, set the KEYs together as one command
+                         (velocity, acceleration, deceleration, destination, jerk, start-velocity:
+                         those the mode uses), or stop=smooth|abrupt; repeatable. An event the
+                         chip refuses is reported on stderr and the run goes on.
+    --cycles N           print exactly cycles 0…N, even past completion (default: until the move
+                         is complete, or in velocity mode settled at its target, at most
+                         10,000,000 cycles)
+    --every K            print every K-th cycle (default 1); the last cycle is always printed
+    --format FORMAT      table (default, aligned) | csv (decimal values) | raw (I32F32 bits)
+    -h, --help           this text
+
+Row 0 is the initial state; columns: cycle, position (counts), velocity (counts/cycle),
+acceleration (counts/cycle²).
+
+EXIT STATUS:
+    0  done    2  bad command line (one line on stderr, nothing on stdout)
+    3  the move was cut short by the 10,000,000-cycle cap (a warning on stderr)
+
+EXAMPLES:
+    profile_table velocity --velocity 4 --acceleration 0.25 --deceleration 0.125 \\
+        --event 20:velocity=6 --event 60:velocity=-2 --cycles 100 --every 10
+    profile_table scurve --destination 400 --velocity 2.75 --acceleration 0.175 --jerk 0.0075 \\
+        --event 40:stop=smooth --event 120:destination=0,velocity=2 --format csv
+    profile_table trapezoidal --destination 1000 --velocity 8 --acceleration 0.5 \\
+        --start-velocity 1 --event 100:destination=-500
+";
+
+fn write_header(out: &mut impl Write, format: Format) -> io::Result<()> {
+    match format {
+        Format::Table => writeln!(
+            out,
+            "{:>9} {:>22} {:>22} {:>22}",
+            "cycle", "position", "velocity", "acceleration"
+        ),
+        Format::Csv | Format::Raw => writeln!(out, "cycle,position,velocity,acceleration"),
+    }
+}
 
 fn write_row(out: &mut impl Write, format: Format, cycle: u64, state: &State) -> io::Result<()> {
     match format {
@@ -47,53 +93,52 @@ fn write_row(out: &mut impl Write, format: Format, cycle: u64, state: &State) ->
     }
 }
 
-fn write_header(out: &mut impl Write, format: Format) -> io::Result<()> {
-    match format {
-        Format::Table => writeln!(
-            out,
-            "{:>9} {:>22} {:>22} {:>22}",
-            "cycle", "position", "velocity", "acceleration"
-        ),
-        Format::Csv | Format::Raw => writeln!(out, "cycle,position,velocity,acceleration"),
-    }
-}
-
-fn run(options: &Options, axis: &mut dyn Axis, out: &mut impl Write) -> io::Result<()> {
+/// Prints the run as it is computed (buffered, so each row is not a system call), every K-th row
+/// and the last one.
+fn run(
+    options: &Options,
+    generator: &mut cli::Generator,
+    out: &mut impl Write,
+) -> io::Result<Ending> {
     write_header(out, options.format)?;
-    let mut last = (0, axis.state(), true);
-    simulate(options, axis, |cycle, state| {
-        // Every K-th row, and the last one whatever K.
-        let due = cycle % options.every == 0;
-        last = (cycle, *state, due);
-        if due {
-            write_row(out, options.format, cycle, state)?;
+    let mut last: Option<(u64, State)> = None;
+    let ending = cli::simulate(options, generator, |cycle, state| {
+        if cycle % options.every == 0 {
+            last = None;
+            write_row(out, options.format, cycle, state)
+        } else {
+            last = Some((cycle, *state));
+            Ok(())
         }
-        Ok(())
     })?;
-    if !last.2 {
-        write_row(out, options.format, last.0, &last.1)?;
+    if let Some((cycle, state)) = last {
+        write_row(out, options.format, cycle, &state)?;
     }
-    out.flush()
+    out.flush()?;
+    Ok(ending)
 }
 
 fn main() -> ExitCode {
-    let options = match parse_args(false) {
-        Ok(options) => options,
-        Err(message) => return usage_error(&message),
-    };
-    let mut axis = match build(&options) {
-        Ok(axis) => axis,
-        Err(message) => return usage_error(&message),
-    };
-    for &(_, command) in &options.events {
-        if let Err(message) = check_event(&options, command) {
-            return usage_error(&message);
+    let arguments: Vec<OsString> = std::env::args_os().skip(1).collect();
+    let options = match cli::parse(Program::Table, arguments) {
+        Ok(Request::Help) => {
+            print!("{HELP}");
+            return ExitCode::SUCCESS;
         }
-    }
-    let stdout = io::stdout();
-    let mut out = BufWriter::new(stdout.lock());
-    match run(&options, axis.as_mut(), &mut out) {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(Request::Run(options)) => options,
+        Err(message) => return usage_error(&message),
+    };
+    let mut generator = match cli::generator(&options) {
+        Ok(generator) => generator,
+        Err(message) => return usage_error(&message),
+    };
+    let mut out = BufWriter::new(io::stdout().lock());
+    match run(&options, &mut generator, &mut out) {
+        Ok(Ending::Done) => ExitCode::SUCCESS,
+        Ok(Ending::CutShort) => {
+            eprintln!("{}", cli::cut_short_warning());
+            ExitCode::from(cli::CUT_SHORT)
+        }
         // A closed pipe (`| head`) is the reader's choice, not an error.
         Err(error) if error.kind() == io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
         Err(error) => {
@@ -105,5 +150,5 @@ fn main() -> ExitCode {
 
 fn usage_error(message: &str) -> ExitCode {
     eprintln!("error: {message}");
-    ExitCode::from(2)
+    ExitCode::from(cli::USAGE)
 }

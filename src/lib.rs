@@ -12,7 +12,7 @@ mod trapezoidal;
 mod velocity;
 pub mod waveform;
 
-pub use error::Error;
+pub use error::{Error, Range};
 pub use scurve::{SCurve, ScurveParameters, ScurvePlan};
 pub use state::{Limits, ProfileGenerator, State, States, StopKind};
 pub use trapezoidal::{Trapezoidal, TrapezoidalParameters};

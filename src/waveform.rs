@@ -193,10 +193,12 @@ impl MicrostepTable {
     /// [`Error::OutOfRange`] (parameter `current`) above 32767.
     pub fn with_current(self, current: u16) -> Result<Self, Error> {
         if current > FULL_SCALE as u16 {
-            return Err(Error::OutOfRange {
-                parameter: "current",
-                range: "0 … 32767",
-            });
+            return Err(Error::out_of_range_bits(
+                "current",
+                i64::from(current),
+                0,
+                crate::Range::of_register(0, FULL_SCALE as i64, 0, ""),
+            ));
         }
         Ok(self.scaled_to(current))
     }

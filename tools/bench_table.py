@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Prints the README's cost-per-cycle tables from the last `cargo bench --bench cycle_cost` run.
+"""Prints the README's cost-per-cycle tables from the last `cargo bench -p profilegen-benches --bench cycle_cost` run.
 
-    cargo bench --bench cycle_cost -- --warm-up-time 1 --measurement-time 3
+    cargo bench -p profilegen-benches --bench cycle_cost -- --warm-up-time 1 --measurement-time 3
     python3 tools/bench_table.py            # reads target/criterion
 
 Each figure is criterion's median for one window divided by the window's cycles (or steps): the

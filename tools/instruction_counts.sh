@@ -5,7 +5,7 @@
 #   tools/instruction_counts.sh            # both tables
 #   tools/instruction_counts.sh --x86      # x86 only (callgrind)
 #
-# x86: examples/step_instructions.rs steps each generator through a window of cycles that all
+# x86: benches/examples/step_instructions.rs steps each generator through a window of cycles that all
 # lie in one phase of the bench move (benches/common), calling `step` through a trait object;
 # callgrind counts the instructions inside `step` (callees included) and this divides by the
 # window's cycles. Cortex-M4: tools/cortex_m4_budgets.sh (every cycle of every generator of the
@@ -13,7 +13,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-cargo build --quiet --release --example step_instructions
+cargo build --quiet --release -p profilegen-benches --example step_instructions
 binary=target/release/examples/step_instructions
 out="${TMPDIR:-/tmp}/profilegen-callgrind.$$"
 trap 'rm -f "$out"' EXIT

@@ -1,6 +1,6 @@
 //! The cycle time and the conversions between per-second and per-cycle units (SPEC §4).
 
-use crate::Error;
+use crate::{Error, Range};
 
 /// A profile generator's cycle time (its sample time), in seconds.
 ///
@@ -19,7 +19,7 @@ pub struct CycleTime {
 }
 
 /// The parameter name and range that cycle-time errors report.
-const CYCLE_TIME: (&str, &str) = ("cycle time", "finite and > 0 s");
+const CYCLE_TIME: (&str, Range) = ("cycle time", Range::positive("s"));
 
 impl CycleTime {
     /// The Juno cycle time: 102.4 µs nominal (±0.5 % over temperature).
@@ -33,11 +33,20 @@ impl CycleTime {
     /// [`Error::NotFinite`] for NaN or ±∞, [`Error::OutOfRange`] for zero or a negative time.
     pub fn from_seconds(seconds: f64) -> Result<Self, Error> {
         let (parameter, range) = CYCLE_TIME;
+        let value = seconds;
         if !seconds.is_finite() {
-            return Err(Error::NotFinite { parameter, range });
+            return Err(Error::NotFinite {
+                parameter,
+                value,
+                range,
+            });
         }
         if seconds <= 0.0 {
-            return Err(Error::OutOfRange { parameter, range });
+            return Err(Error::OutOfRange {
+                parameter,
+                value,
+                range,
+            });
         }
         Ok(Self { seconds })
     }
@@ -46,13 +55,30 @@ impl CycleTime {
     /// example uses 9,765 cycles/s).
     ///
     /// # Errors
-    /// As [`Self::from_seconds`], for `1 / hertz`.
+    /// [`Error::NotFinite`] or [`Error::OutOfRange`] (parameter `cycle rate`, in cycles/s) unless
+    /// the rate is finite and positive with a finite period.
     pub fn from_hertz(hertz: f64) -> Result<Self, Error> {
+        let (parameter, range) = ("cycle rate", Range::positive("cycles/s"));
         if !hertz.is_finite() {
-            let (parameter, range) = CYCLE_TIME;
-            return Err(Error::NotFinite { parameter, range });
+            return Err(Error::NotFinite {
+                parameter,
+                value: hertz,
+                range,
+            });
         }
-        Self::from_seconds(1.0 / hertz)
+        if hertz <= 0.0 {
+            return Err(Error::OutOfRange {
+                parameter,
+                value: hertz,
+                range,
+            });
+        }
+        Self::from_seconds(1.0 / hertz).map_err(|_| Error::OutOfRange {
+            // Finite and positive, yet 1/hertz is not (a subnormal rate): too slow to represent.
+            parameter,
+            value: hertz,
+            range,
+        })
     }
 
     /// The cycle time in seconds.
@@ -103,8 +129,9 @@ impl CycleTime {
         let change = to_counts_per_second - from_counts_per_second;
         if !change.is_finite() {
             return Err(Error::NotFinite {
-                parameter: "velocity",
-                range: "finite counts/s",
+                parameter: "velocity change",
+                value: change,
+                range: Range::finite("counts/s"),
             });
         }
         let magnitude = if change < 0.0 { -change } else { change };
@@ -113,12 +140,20 @@ impl CycleTime {
 }
 
 fn check_duration(seconds: f64) -> Result<(), Error> {
-    let (parameter, range) = ("duration", "finite and > 0 s");
+    let (parameter, value, range) = ("duration", seconds, Range::positive("s"));
     if !seconds.is_finite() {
-        return Err(Error::NotFinite { parameter, range });
+        return Err(Error::NotFinite {
+            parameter,
+            value,
+            range,
+        });
     }
     if seconds <= 0.0 {
-        return Err(Error::OutOfRange { parameter, range });
+        return Err(Error::OutOfRange {
+            parameter,
+            value,
+            range,
+        });
     }
     Ok(())
 }

@@ -13,8 +13,8 @@ super::register! {
     /// ```
     TargetVelocity(I16F16, i32, frac = 16, min = i32::MIN, max = i32::MAX),
     parameter = "velocity",
-    range = "-32768 … 32767.99998 counts/cycle (signed 16.16)",
-    per_second = 1, unit = "counts/s"
+    unit = "counts/cycle",
+    per_second = 1, physical_unit = "counts/s"
 }
 
 super::register! {
@@ -29,6 +29,6 @@ super::register! {
     /// ```
     Acceleration(U8F24, u32, frac = 24, min = 0, max = 0x7FFF_FFFF),
     parameter = "acceleration",
-    range = "0 … 127.99999994 counts/cycle² (unsigned 8.24, 31 bits)",
-    per_second = 2, unit = "counts/s²"
+    unit = "counts/cycle²",
+    per_second = 2, physical_unit = "counts/s²"
 }

@@ -6,7 +6,7 @@ super::register! {
     /// MC1451A destination position: signed 32 bits, counts, limited to ±2³⁰.
     Destination(I32F0, i32, frac = 0, min = -1_073_741_824, max = 1_073_741_823),
     parameter = "destination",
-    range = "-1073741824 … 1073741823 counts"
+    unit = "counts"
 }
 
 super::register! {
@@ -20,8 +20,8 @@ super::register! {
     /// ```
     MaxVelocity(U16F16, u32, frac = 16, min = 0, max = 1_073_741_823),
     parameter = "velocity",
-    range = "0 … 16383.99998 counts/cycle (1/2^16 units, 0 … 1073741823)",
-    per_second = 1, unit = "counts/s"
+    unit = "counts/cycle",
+    per_second = 1, physical_unit = "counts/s"
 }
 
 super::register! {
@@ -36,8 +36,8 @@ super::register! {
     /// ```
     ScurveAcceleration(U0F16, u16, frac = 16, min = 0, max = 32_767),
     parameter = "acceleration",
-    range = "0 … 0.49998 counts/cycle² (1/2^16 units, 0 … 32767)",
-    per_second = 2, unit = "counts/s²"
+    unit = "counts/cycle²",
+    per_second = 2, physical_unit = "counts/s²"
 }
 
 super::register! {
@@ -51,16 +51,16 @@ super::register! {
     /// ```
     Jerk(U0F32, u32, frac = 32, min = 0, max = 2_147_483_647),
     parameter = "jerk",
-    range = "0 … 0.4999999998 counts/cycle³ (1/2^32 units, 0 … 2147483647)",
-    per_second = 3, unit = "counts/s³"
+    unit = "counts/cycle³",
+    per_second = 3, physical_unit = "counts/s³"
 }
 
 super::register! {
     /// MC1451A trapezoidal-mode acceleration: unsigned 32 bits with 1/2¹⁶ scaling, counts/cycle².
     TrapezoidalAcceleration(U16F16, u32, frac = 16, min = 0, max = 1_073_741_823),
     parameter = "acceleration",
-    range = "0 … 16383.99998 counts/cycle² (1/2^16 units, 0 … 1073741823)",
-    per_second = 2, unit = "counts/s²"
+    unit = "counts/cycle²",
+    per_second = 2, physical_unit = "counts/s²"
 }
 
 super::register! {
@@ -73,5 +73,5 @@ super::register! {
     /// ```
     GearRatio(I16F16, i32, frac = 16, min = -1_073_741_824, max = 1_073_741_823),
     parameter = "gear ratio",
-    range = "-16384 … 16383.99998 (1/2^16 units, -1073741824 … 1073741823)"
+    unit = ""
 }

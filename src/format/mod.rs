@@ -29,29 +29,46 @@ fn round_ties_even(x: f64) -> f64 {
 }
 
 /// Converts a real value to raw register bits: scale by `2^frac_bits`, round to nearest (ties to
-/// even), check `min_bits..=max_bits`. Negative input to an unsigned register (`min_bits == 0`) is
-/// out of range even when it would round to zero: the manuals call such registers positive.
+/// even), check `range` (in raw units: `range.min · 2^frac_bits ..= range.max · 2^frac_bits`).
+/// Negative input to an unsigned register (`range.min == 0`) is out of range even when it would
+/// round to zero: the manuals call such registers positive. Non-zero input that rounds to zero
+/// in a register with fractional bits is [`Error::Underflow`](crate::Error::Underflow): zero would
+/// silently mean something else (no motion, "use the acceleration").
 fn real_to_bits(
     value: f64,
     frac_bits: u32,
-    min_bits: i64,
-    max_bits: i64,
     parameter: &'static str,
-    range: &'static str,
+    range: crate::Range,
 ) -> Result<i64, crate::Error> {
     if !value.is_finite() {
-        return Err(crate::Error::NotFinite { parameter, range });
+        return Err(crate::Error::NotFinite {
+            parameter,
+            value,
+            range,
+        });
     }
-    if min_bits == 0 && value < 0.0 {
-        return Err(crate::Error::OutOfRange { parameter, range });
+    let out_of_range = crate::Error::OutOfRange {
+        parameter,
+        value,
+        range,
+    };
+    if range.min == 0.0 && value < 0.0 {
+        return Err(out_of_range);
     }
     // Multiplying by a power of two is exact for every finite value that stays finite; values that
     // overflow to infinity fail the range check below all the same.
-    let scaled = value * (1u64 << frac_bits) as f64;
-    let rounded = round_ties_even(scaled);
-    // min_bits and max_bits are at most 2^32 in magnitude, so they convert to f64 exactly.
-    if rounded < min_bits as f64 || rounded > max_bits as f64 {
-        return Err(crate::Error::OutOfRange { parameter, range });
+    let scale = (1u64 << frac_bits) as f64;
+    let rounded = round_ties_even(value * scale);
+    // The bounds times the scale are the raw bounds again, exactly (powers of two).
+    if rounded < range.min * scale || rounded > range.max * scale {
+        return Err(out_of_range);
+    }
+    if rounded == 0.0 && value != 0.0 && frac_bits > 0 {
+        return Err(crate::Error::Underflow {
+            parameter,
+            value,
+            range,
+        });
     }
     Ok(rounded as i64)
 }
@@ -62,8 +79,8 @@ macro_rules! register {
         $(#[$meta:meta])*
         $name:ident($fixed:ty, $bits:ty, frac = $frac:expr, min = $min:expr, max = $max:expr),
         parameter = $parameter:expr,
-        range = $range:expr
-        $(, per_second = $power:expr, unit = $unit:expr)?
+        unit = $unit:expr
+        $(, per_second = $power:expr, physical_unit = $physical:expr)?
     ) => {
         $(#[$meta])*
         #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
@@ -72,8 +89,10 @@ macro_rules! register {
         impl $name {
             /// The register's name, as errors report it.
             pub const PARAMETER: &'static str = $parameter;
-            /// The register's legal range, with units, as errors report it.
-            pub const RANGE: &'static str = $range;
+            /// The register's legal range and resolution, in its own (per-cycle) units, as errors
+            /// report it.
+            pub const RANGE: $crate::Range =
+                $crate::Range::of_register($min as i64, $max as i64, $frac, $unit);
             /// The smallest raw value the register accepts.
             pub const MIN_BITS: $bits = $min;
             /// The largest raw value the register accepts.
@@ -93,7 +112,11 @@ macro_rules! register {
             #[allow(unused_comparisons)] // min is 0 for the unsigned registers
             pub const fn from_bits(bits: $bits) -> Result<Self, crate::Error> {
                 if bits < $min || bits > $max {
-                    return Err(crate::Error::OutOfRange { parameter: $parameter, range: $range });
+                    return Err(crate::Error::OutOfRange {
+                        parameter: $parameter,
+                        value: bits as f64 / (1u64 << $frac) as f64,
+                        range: Self::RANGE,
+                    });
                 }
                 Ok(Self(<$fixed>::from_bits(bits)))
             }
@@ -104,11 +127,11 @@ macro_rules! register {
             /// # Errors
             /// [`Error::NotFinite`](crate::Error::NotFinite) for NaN or ±∞;
             /// [`Error::OutOfRange`](crate::Error::OutOfRange) when the rounded value lies outside
-            /// the register's range, or the value is negative and the register unsigned.
+            /// the register's range, or the value is negative and the register unsigned;
+            /// [`Error::Underflow`](crate::Error::Underflow) when a non-zero value rounds to zero
+            /// (registers with fractional bits).
             pub fn from_num(value: f64) -> Result<Self, crate::Error> {
-                let bits = $crate::format::real_to_bits(
-                    value, $frac, $min as i64, $max as i64, $parameter, $range,
-                )?;
+                let bits = $crate::format::real_to_bits(value, $frac, $parameter, Self::RANGE)?;
                 // In range, so the narrowing cast is exact.
                 Ok(Self(<$fixed>::from_bits(bits as $bits)))
             }
@@ -142,16 +165,18 @@ macro_rules! register {
             }
 
             $(
-            #[doc = concat!("The register from a physical value in ", $unit, ": multiplied by the")]
+            #[doc = concat!("The register from a physical value in ", $physical, ": multiplied by the")]
             #[doc = concat!("cycle time to the power ", stringify!($power), ", then rounded as [`Self::from_num`].")]
             ///
             /// # Errors
-            /// As [`Self::from_num`], for the scaled value.
+            /// As [`Self::from_num`], for the scaled value; the error reports `value` and the
+            #[doc = concat!("legal range in ", $physical, " at this cycle time.")]
             pub fn from_physical(value: f64, cycle: $crate::format::CycleTime) -> Result<Self, crate::Error> {
                 Self::from_num(cycle.per_cycle(value, $power))
+                    .map_err(|error| error.in_units(value, cycle.per_second(1.0, $power), $physical))
             }
 
-            #[doc = concat!("The register's value as a physical value in ", $unit, ".")]
+            #[doc = concat!("The register's value as a physical value in ", $physical, ".")]
             pub fn to_physical(self, cycle: $crate::format::CycleTime) -> f64 {
                 cycle.per_second(self.to_f64(), $power)
             }

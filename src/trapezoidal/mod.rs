@@ -27,9 +27,11 @@ pub struct TrapezoidalParameters {
     pub start_velocity: TargetVelocity,
 }
 
-const START_VELOCITY_RANGE: &str = "0 … the maximum velocity, counts/cycle (16.16)";
-const MAX_VELOCITY_RANGE: &str =
-    "0.00002 … 32767.99998 counts/cycle, and at least the starting velocity (16.16)";
+/// A maximum velocity: the positive half of the 16.16 register.
+const MAX_VELOCITY_RANGE: crate::Range = crate::Range {
+    min: 0.0,
+    ..TargetVelocity::RANGE
+};
 
 /// The limits, validated, as I32F32 bits (a separate value from the per-cycle state).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -60,10 +62,12 @@ impl TrapezoidalParameters {
             });
         }
         if max_velocity < 0 {
-            return Err(Error::OutOfRange {
-                parameter: "velocity",
-                range: MAX_VELOCITY_RANGE,
-            });
+            return Err(Error::out_of_range_bits(
+                "velocity",
+                max_velocity,
+                16,
+                MAX_VELOCITY_RANGE,
+            ));
         }
         if self.acceleration.is_zero() {
             return Err(Error::Zero {
@@ -73,10 +77,13 @@ impl TrapezoidalParameters {
         }
         let start_velocity = i64::from(self.start_velocity.to_bits());
         if !(0..=max_velocity).contains(&start_velocity) {
-            return Err(Error::OutOfRange {
-                parameter: "start velocity",
-                range: START_VELOCITY_RANGE,
-            });
+            // 0 … the maximum velocity (16.16 bits, like the starting velocity).
+            return Err(Error::out_of_range_bits(
+                "start velocity",
+                start_velocity,
+                16,
+                MAX_VELOCITY_RANGE.up_to_bits(max_velocity, 16),
+            ));
         }
         let acceleration = i64::from(self.acceleration.to_bits()) << 8;
         let deceleration = match self.deceleration.to_bits() {

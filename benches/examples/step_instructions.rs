@@ -4,11 +4,11 @@
 //! count the instructions inside it. `tools/instruction_counts.sh` runs every window under
 //! callgrind and prints the table (x86 and Cortex-M4).
 //!
-//! `cargo run --release --example step_instructions -- --list` lists the windows;
-//! `… -- WINDOW` steps one (the generator is advanced to the window's first cycle outside the
-//! counted function, `measure`).
+//! `cargo run --release -p profilegen-benches --example step_instructions -- --list` lists the
+//! windows; `… -- WINDOW` steps one (the generator is advanced to the window's first cycle outside
+//! the counted function, `measure`).
 
-#[path = "../benches/common/mod.rs"]
+#[path = "../common/mod.rs"]
 mod common;
 
 use std::hint::black_box;

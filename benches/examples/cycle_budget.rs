@@ -2,10 +2,10 @@
 //! the same move (benches/common), as nanoseconds and as a share of the Juno (102.4 µs) and
 //! MC1451A (330 µs) cycle times, printed as the README's table.
 //!
-//! `cargo run --release --example cycle_budget` (criterion's `cargo bench` measures the same
-//! moves with confidence intervals; this is the quick summary).
+//! `cargo run --release -p profilegen-benches --example cycle_budget` (criterion's `cargo bench`
+//! measures the same moves with confidence intervals; this is the quick summary).
 
-#[path = "../benches/common/mod.rs"]
+#[path = "../common/mod.rs"]
 mod common;
 
 use std::hint::black_box;
