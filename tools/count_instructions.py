@@ -552,8 +552,6 @@ def main() -> int:
                         help="first check the block-based count against a per-instruction count")
     parser.add_argument("--verify-moves", type=int, default=3, help="plans checked by --verify (default 3)")
     parser.add_argument("--verify-steps", type=int, default=2000, help="steps checked by --verify (default 2000)")
-    parser.add_argument("--trapezoid-step-budget", type=int,
-                        help="fail when any Trapezoidal step executes more instructions (default: --step-budget)")
     parser.add_argument("--trapezoid-moves", type=int, default=200,
                         help="random trapezoid moves stepped to the end (default %(default)s)")
     parser.add_argument("--functions", type=int, default=8,
@@ -649,14 +647,7 @@ def main() -> int:
     planning_ok = within("planning", counts, args.plan_budget, f" (move {worst[0]})", "moves")
     stepping_ok = within("one step of SCurve", all_steps, args.step_budget, "", "cycles")
     for name, counts_ in others.items():
-        budget = args.step_budget
-        if name == "Trapezoidal" and args.trapezoid_step_budget is not None:
-            budget = args.trapezoid_step_budget
-            if args.step_budget is not None:
-                over = sum(1 for n in counts_ if n > args.step_budget)
-                print(f"note: {over} of {len(counts_)} Trapezoidal steps exceed {args.step_budget} instructions "
-                      "(the cycles that end a run of the plan and set up the next)")
-        stepping_ok &= within(f"one step of {name}", counts_, budget, "", "cycles")
+        stepping_ok &= within(f"one step of {name}", counts_, args.step_budget, "", "cycles")
     status = 0 if planning_ok and stepping_ok else 1
     return status
 
