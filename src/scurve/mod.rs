@@ -30,10 +30,10 @@
 //! Planning takes a bounded number of integer operations, the same on every target (no floating
 //! point): at most eight shapes, each solved in closed form, a fixed number of notch-pair
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
-//! checked). Measured (see the README for the commands): 10,492 Cortex-M4 instructions median,
-//! 21,592 at worst over the first 1,000 random moves (27,601 over 5,000: moves of one raw unit
-//! of jerk, whose single unit leaves the whole remainder to the notch pairs); on the x86
-//! development machine a few hundred nanoseconds median, about 2 µs at worst. A step is at
+//! checked). Measured (see the README for the commands): 9,715 Cortex-M4 instructions median,
+//! 18,926 at worst over the first 1,000 random moves (25,599 over 5,000: moves of one to a few
+//! raw units of jerk, whose few units leave the whole remainder to the notch pairs); on the x86
+//! development machine a few hundred nanoseconds median, under about 2 µs at worst. A step is at
 //! most 40 Cortex-M4 instructions.
 
 mod division;

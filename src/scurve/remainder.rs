@@ -68,12 +68,39 @@ impl Placement {
     }
 
     /// With one more pair.
+    #[cfg(test)]
     pub fn with(mut self, notch: Notch) -> Self {
+        self.push(notch);
+        self
+    }
+
+    /// Adds a pair (in place: a placement is 80 bytes, and a copy costs about an instruction a
+    /// byte on a Cortex-M4).
+    pub fn push(&mut self, notch: Notch) {
         if self.len < MAX_NOTCHES {
             self.notches[self.len] = notch;
             self.len += 1;
         }
-        self
+    }
+
+    /// Adds `pairs` if they fit with those placed already ([`Self::fits`]); else leaves the
+    /// placement as it was.
+    fn try_add(
+        &mut self,
+        pairs: &[Notch],
+        main: &MainMove,
+        bounds: &Bounds,
+        jerk_limit: u64,
+    ) -> bool {
+        let placed = self.len;
+        for &pair in pairs {
+            self.push(pair);
+        }
+        let fits = self.fits(placed, main, bounds, jerk_limit);
+        if !fits {
+            self.len = placed;
+        }
+        fits
     }
 
     /// Whether the pairs from the `checked`-th on fit the main move within `jerk_limit` (raw
@@ -331,8 +358,9 @@ fn one_pair(
 const WIDTH_TRIES: u64 = 1;
 
 /// Notch pairs that take exactly `left + q·area` off `main` together with the pairs already in
-/// `placed`, for the least `q ≤ available` that makes the remainder fit ([`Placement::fits`]):
-/// `q` units of that area then keep their whole cruise. A fixed, small number of candidates:
+/// `placed` (added to it), for the least `q ≤ available` that makes the remainder fit
+/// ([`Placement::fits`]): `Some(q)`, and `q` units of that area then keep their whole cruise;
+/// `None` (and `placed` as it was) if no candidate fits. A fixed, small number of candidates:
 /// for each of three ways to place a pair (first notch in phases I–II, second in the cruise or
 /// after phase V; both in the cruise), one pair of width 1 or 2 for a small remainder, else (not
 /// in the cruise alone) two pairs of widths `w` and `w + 1` for a few `w`: the estimate
@@ -342,23 +370,17 @@ pub(super) fn take(
     left: u64,
     main: &MainMove,
     bounds: &Bounds,
-    placed: Placement,
+    placed: &mut Placement,
     jerk_limit: u64,
     (area, available): (u64, u64),
-) -> Option<(Placement, u64)> {
+) -> Option<u64> {
     if left == 0 {
-        return Some((placed, 0));
+        return Some(0);
     }
     if left == 1 && (area == 0 || available == 0) {
         return None; // no pair takes less than 2 (a width of 1, a span of 2)
     }
-    let try_fit = |pairs: &[Notch]| {
-        let placement = pairs.iter().fold(placed, |p, &n| p.with(n));
-        let checked = placed.notches().len();
-        placement
-            .fits(checked, main, bounds, jerk_limit)
-            .then_some(placement)
-    };
+    let mut try_fit = |pairs: &[Notch]| placed.try_add(pairs, main, bounds, jerk_limit);
     // The three placements that take remainders (measured over 100,000 random moves: first notch
     // in phases I–II with the second in the cruise or after phase V, and both in the cruise for
     // single pairs; first in the cruise, second after phase V, never did).
@@ -367,13 +389,20 @@ pub(super) fn take(
     let reach = area.saturating_mul(available).saturating_add(left);
     for placement in PLACEMENTS {
         let room = Room::new(bounds, placement);
-        for width in 1..=2 {
+        // A single pair takes w·span ≤ 2·total, and q units only add to the remainder: a larger
+        // one needs two pairs.
+        let widest = if left <= bounds.total.saturating_mul(2) {
+            2
+        } else {
+            0
+        };
+        for width in 1..=widest {
             let (first, second, range) = room.at(width);
             let Some((span, q)) = one_pair(left, width, range, (area, available)) else {
                 continue;
             };
-            if let Some(found) = place(first, second, width, span).and_then(|n| try_fit(&[n])) {
-                return Some((found, q));
+            if place(first, second, width, span).is_some_and(|n| try_fit(&[n])) {
+                return Some(q);
             }
         }
         // Two pairs only with the first notch in phases I–II (see above).
@@ -462,12 +491,12 @@ pub(super) fn take(
                 let fits_second = (second2.0..=second2.1).contains(&(start + k2));
                 (fits_first && fits_second).then_some(Notch { start, ..two })
             };
-            let found = [Some(two), moved(-1), moved(1)]
+            if [Some(two), moved(-1), moved(1)]
                 .into_iter()
                 .flatten()
-                .find_map(|two| try_fit(&[one, two]));
-            if let Some(found) = found {
-                return Some((found, q));
+                .any(|two| try_fit(&[one, two]))
+            {
+                return Some(q);
             }
         }
     }

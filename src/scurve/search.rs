@@ -313,29 +313,33 @@ fn complete(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule) -> 
         let Some(velocity_notch) = velocity_notch(notch, &bounds, c) else {
             return false;
         };
-        placement = placement.with(velocity_notch);
+        placement.push(velocity_notch);
         if !placement.fits(0, &main, &bounds, jerk) {
             return false;
         }
     }
-    let Some((placement, given)) =
-        remainder::take(over, &main, &bounds, placement, jerk, (area, available))
-    else {
+    let Some(given) = remainder::take(
+        over,
+        &main,
+        &bounds,
+        &mut placement,
+        jerk,
+        (area, available),
+    ) else {
         return false;
     };
-    let main = match give_back {
+    match give_back {
         Some(k) if given > 0 => {
             early[k] -= given;
-            let main = mix.main_move(c, early);
+            // A move of its own, not a copy of one into the other's place (a few hundred
+            // bytes: about an instruction a byte on a Cortex-M4).
+            let fewer_early = mix.main_move(c, early);
             // Fewer early units can only move phase V later; the pairs must still fit.
-            if !placement.fits(0, &main, &main.bounds(), jerk) {
-                return false;
-            }
-            main
+            placement.fits(0, &fewer_early, &fewer_early.bounds(), jerk)
+                && finish(&fewer_early, &placement, (mix.a, mix.b), move_, out)
         }
-        _ => main,
-    };
-    finish(&main, &placement, (mix.a, mix.b), move_, out)
+        _ => finish(&main, &placement, (mix.a, mix.b), move_, out),
+    }
 }
 
 /// As [`complete`], for a mix planned with two units of jerk to spare: one unit more than fits
