@@ -279,3 +279,131 @@ fn display_shows_the_value_in_the_chips_units() {
         "-20000 pulses"
     );
 }
+
+mod helpers {
+    use super::*;
+    use profilegen::format::mcx514::{
+        acceleration_for_change, deceleration_pulses, linear_manual_deceleration_point,
+        manual_deceleration_point,
+    };
+
+    fn speeds(initial: u32, drive: u32) -> (InitialSpeed, DriveSpeed) {
+        (
+            InitialSpeed::from_bits(initial).unwrap(),
+            DriveSpeed::from_bits(drive).unwrap(),
+        )
+    }
+
+    #[test]
+    fn deceleration_pulses_are_the_ramps_area_rounded_up() {
+        let rate = |r| Deceleration::from_bits(r).unwrap();
+        // 1 → 3 pps at 1 pps/s: 2 s at a mean of 2 pps = 4 pulses, exactly.
+        let (sv, dv) = speeds(1, 3);
+        assert_eq!(deceleration_pulses(sv, dv, rate(1)), 4);
+        // 1 → 2 pps at 1 pps/s: 1 s at a mean of 1.5 pps = 1.5 pulses → 2 (up: decelerate early).
+        let (sv, dv) = speeds(1, 2);
+        assert_eq!(deceleration_pulses(sv, dv, rate(1)), 2);
+        // No ramp when the drive speed is not above the initial speed.
+        let (sv, dv) = speeds(5_000, 5_000);
+        assert_eq!(deceleration_pulses(sv, dv, rate(1)), 0);
+        let (sv, dv) = speeds(6_000, 5_000);
+        assert_eq!(deceleration_pulses(sv, dv, rate(1)), 0);
+        // The widest: 1 → 8,000,000 pps at 1 pps/s is (6.4e13 − 1)/2 → 32,000,000,000,000 pulses
+        // (no overflow).
+        let (sv, dv) = (InitialSpeed::MIN, DriveSpeed::MAX);
+        assert_eq!(deceleration_pulses(sv, dv, rate(1)), 32_000_000_000_000);
+    }
+
+    #[test]
+    fn a_deceleration_longer_than_the_move_is_an_error() {
+        let range = (0.0, 4_294_967_292.0, "pulses");
+        let parameter = "manual deceleration point";
+        assert_out_of_range(manual_deceleration_point(100, 101), parameter, -1.0, range);
+        // Above the register, whether or not it fits a u32.
+        assert_out_of_range(
+            manual_deceleration_point(4_294_967_293, 0),
+            parameter,
+            4_294_967_293.0,
+            range,
+        );
+        assert_out_of_range(
+            manual_deceleration_point(1 << 40, 0),
+            parameter,
+            (1u64 << 40) as f64,
+            range,
+        );
+        assert_eq!(manual_deceleration_point(100, 100).unwrap().to_bits(), 0);
+        // Linear: the long axis is the largest magnitude, whatever its sign or place.
+        let finish = [3, -7].map(|p| FinishPoint::from_bits(p).unwrap());
+        assert_eq!(
+            linear_manual_deceleration_point(&finish, 2)
+                .unwrap()
+                .to_bits(),
+            5
+        );
+        assert_out_of_range(
+            linear_manual_deceleration_point(&finish, 8),
+            parameter,
+            -1.0,
+            range,
+        );
+        let extreme = [
+            FinishPoint::MIN,
+            FinishPoint::MAX,
+            FinishPoint::MIN,
+            FinishPoint::MIN,
+        ];
+        assert_eq!(
+            linear_manual_deceleration_point(&extreme, 0)
+                .unwrap()
+                .to_bits(),
+            1_073_741_823
+        );
+    }
+
+    #[test]
+    fn acceleration_for_change_checks_the_duration_and_the_result() {
+        let (sv, dv) = speeds(500, 20_000);
+        for bad in [0.0, -0.3] {
+            assert!(matches!(
+                acceleration_for_change(sv, dv, bad),
+                Err(Error::OutOfRange {
+                    parameter: "duration",
+                    ..
+                })
+            ));
+        }
+        assert!(matches!(
+            acceleration_for_change(sv, dv, f64::NAN),
+            Err(Error::NotFinite {
+                parameter: "duration",
+                ..
+            })
+        ));
+        // A slow-down gives the same magnitude: 20,000 → 500 in 0.3 s.
+        let (sv_high, dv_low) = speeds(20_000, 500);
+        assert_eq!(
+            acceleration_for_change(sv_high, dv_low, 0.3)
+                .unwrap()
+                .to_bits(),
+            65_000
+        );
+        // Equal speeds: 0 pps/s, below the register's 1.
+        let (sv, dv) = speeds(500, 500);
+        assert_out_of_range(
+            acceleration_for_change(sv, dv, 1.0),
+            "acceleration",
+            0.0,
+            (1.0, 536_870_911.0, "pps/s"),
+        );
+        // 8,000,000 − 1 pps in 1 ms: 7.999999e9 pps/s, above 2^29 − 1.
+        let (sv, dv) = (InitialSpeed::MIN, DriveSpeed::MAX);
+        assert!(matches!(
+            acceleration_for_change(sv, dv, 1e-3),
+            Err(Error::OutOfRange {
+                parameter: "acceleration",
+                ..
+            })
+        ));
+    }
+}

@@ -222,3 +222,115 @@ mcx514_register! {
     parameter = "centre",
     unit = "pulses"
 }
+
+/// The manual deceleration point of a move of `total_pulses` driving-axis pulses that needs
+/// `deceleration_pulses` to slow down: `total − deceleration` (reference 003; for a circle, the
+/// total is the short-axis pulse count: 56,568 − 3,075 = 53,493 for r = 10,000).
+///
+/// # Errors
+/// [`Error::OutOfRange`] (parameter `manual deceleration point`) when the deceleration needs more
+/// pulses than the move has (the point would be negative), or the point exceeds the register.
+pub fn manual_deceleration_point(
+    total_pulses: u64,
+    deceleration_pulses: u64,
+) -> Result<ManualDecelerationPoint, Error> {
+    // i128: both u64, so the difference is exact whatever its sign.
+    let point = i128::from(total_pulses) - i128::from(deceleration_pulses);
+    match u32::try_from(point) {
+        Ok(point) => ManualDecelerationPoint::from_bits(point),
+        Err(_) => Err(Error::OutOfRange {
+            parameter: ManualDecelerationPoint::PARAMETER,
+            value: point as f64,
+            range: ManualDecelerationPoint::RANGE,
+        }),
+    }
+}
+
+/// The manual deceleration point of a linear interpolation to `finish` (2–4 axes, relative):
+/// counted in long-axis pulses, `max|Δᵢ| − deceleration_pulses` (reference 003: "set the maximum
+/// absolute value among the finish points of each axis coordinates as the manual deceleration
+/// point of the main axis").
+///
+/// ```
+/// use profilegen::format::mcx514::{linear_manual_deceleration_point, FinishPoint};
+/// // Reference 003: finish (−20000, 30000, −50000), 5,000 pulses to decelerate → 45,000.
+/// let finish = [-20_000, 30_000, -50_000].map(|p| FinishPoint::from_bits(p).unwrap());
+/// assert_eq!(linear_manual_deceleration_point(&finish, 5_000)?.to_bits(), 45_000);
+/// # Ok::<(), profilegen::Error>(())
+/// ```
+///
+/// # Errors
+/// As [`manual_deceleration_point`]: the deceleration needs more pulses than the long axis has.
+pub fn linear_manual_deceleration_point<const N: usize>(
+    finish: &[FinishPoint; N],
+    deceleration_pulses: u64,
+) -> Result<ManualDecelerationPoint, Error> {
+    let long_axis = finish
+        .iter()
+        .map(|point| point.to_bits().unsigned_abs())
+        .max()
+        .unwrap_or(0);
+    manual_deceleration_point(u64::from(long_axis), deceleration_pulses)
+}
+
+/// The pulses a trapezoid outputs while it slows from the drive speed DV to the initial speed SV
+/// at the deceleration DC: `(DV² − SV²) / (2·DC)`, the area under the speed ramp — the manual's
+/// `(SV + DV)·t/2` with `t = (DV − SV)/DC` — rounded **up**, so a deceleration point computed
+/// from it errs early (a short creep at SV) rather than late (a stop above SV). Zero when
+/// DV ≤ SV (no ramp). The same formula with the acceleration gives the pulses of the speed-up.
+///
+/// This is the continuous-time count the manual's examples use; a cycle-based profile's own
+/// count can differ by the pulses of a cycle or two.
+///
+/// ```
+/// use profilegen::format::mcx514::{deceleration_pulses, Deceleration, DriveSpeed, InitialSpeed};
+/// // Reference 003: (500 + 20,000) · 0.3 / 2 = 3,075 pulses at 65,000 pps/s.
+/// let pulses = deceleration_pulses(
+///     InitialSpeed::from_bits(500)?,
+///     DriveSpeed::from_bits(20_000)?,
+///     Deceleration::from_bits(65_000)?,
+/// );
+/// assert_eq!(pulses, 3_075);
+/// # Ok::<(), profilegen::Error>(())
+/// ```
+pub fn deceleration_pulses(
+    initial: InitialSpeed,
+    drive: DriveSpeed,
+    deceleration: Deceleration,
+) -> u64 {
+    let (initial, drive) = (u64::from(initial.to_bits()), u64::from(drive.to_bits()));
+    if drive <= initial {
+        return 0;
+    }
+    // u64: DV² ≤ (8·10⁶)² = 6.4·10¹³ and 2·DC < 2³⁰, far inside 2⁶⁴.
+    let area_twice = drive * drive - initial * initial;
+    area_twice.div_ceil(2 * u64::from(deceleration.to_bits()))
+}
+
+/// The acceleration that takes the speed from `initial` to `drive` in `seconds`:
+/// `|DV − SV| / t` pps/s, rounded to the nearest integer (reference 003: 500 → 20,000 pps in
+/// 0.3 s is 65,000 pps/s, 0xFDE8). For the deceleration register, the same value:
+/// `Deceleration::from_bits(acceleration.to_bits())`.
+///
+/// ```
+/// use profilegen::format::mcx514::{acceleration_for_change, DriveSpeed, InitialSpeed};
+/// let acceleration =
+///     acceleration_for_change(InitialSpeed::from_bits(500)?, DriveSpeed::from_bits(20_000)?, 0.3)?;
+/// assert_eq!(acceleration.to_bits(), 0xFDE8);
+/// # Ok::<(), profilegen::Error>(())
+/// ```
+///
+/// # Errors
+/// [`Error::NotFinite`] or [`Error::OutOfRange`] (parameter `duration`, in s) unless `seconds` is
+/// finite and positive; [`Error::OutOfRange`] (parameter `acceleration`, in pps/s) when the rate
+/// rounds outside 1 … 536,870,911 pps/s (equal speeds, or a change too slow or too fast).
+pub fn acceleration_for_change(
+    initial: InitialSpeed,
+    drive: DriveSpeed,
+    seconds: f64,
+) -> Result<Acceleration, Error> {
+    super::cycle::check_duration(seconds)?;
+    let change = drive.to_f64() - initial.to_f64();
+    let magnitude = if change < 0.0 { -change } else { change };
+    Acceleration::from_num(magnitude / seconds)
+}
