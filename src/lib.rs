@@ -5,6 +5,7 @@
 pub mod conformance;
 mod error;
 pub mod format;
+pub mod interpolation;
 pub mod reference;
 mod scurve;
 mod state;
