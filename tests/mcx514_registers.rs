@@ -407,3 +407,73 @@ mod helpers {
         ));
     }
 }
+
+mod properties {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// For one register: every integer outside the range is refused (from the integer where the
+    /// type holds it, and as a real), naming the parameter, the value and the range; every integer
+    /// inside is kept exactly; a real inside rounds to the nearest integer.
+    macro_rules! register_properties {
+        ($module:ident, $register:ident, $bits:ty, $unit:expr) => {
+            mod $module {
+                use super::*;
+
+                fn range() -> (f64, f64, &'static str) {
+                    ($register::MIN_BITS as f64, $register::MAX_BITS as f64, $unit)
+                }
+
+                proptest! {
+                    #![proptest_config(ProptestConfig::with_cases(4_096))]
+
+                    #[test]
+                    fn outside_is_refused(value in prop_oneof![
+                        any::<i64>(),
+                        ($register::MAX_BITS as i64 + 1)..($register::MAX_BITS as i64 + 1_000),
+                        ($register::MIN_BITS as i64 - 1_000)..($register::MIN_BITS as i64),
+                    ]) {
+                        let (min, max) = ($register::MIN_BITS as i64, $register::MAX_BITS as i64);
+                        prop_assume!(value < min || value > max);
+                        if let Ok(bits) = <$bits>::try_from(value) {
+                            assert_out_of_range(
+                                $register::from_bits(bits), $register::PARAMETER, value as f64, range());
+                        }
+                        let real = value as f64;
+                        assert_out_of_range(
+                            $register::from_num(real), $register::PARAMETER, real, range());
+                    }
+
+                    #[test]
+                    fn inside_is_exact(value in $register::MIN_BITS..=$register::MAX_BITS) {
+                        prop_assert_eq!($register::from_bits(value).unwrap().to_bits(), value);
+                        prop_assert_eq!($register::from_num(value as f64).unwrap().to_bits(), value);
+                        prop_assert_eq!($register::from_bits(value).unwrap().to_f64(), value as f64);
+                    }
+
+                    #[test]
+                    fn reals_round_to_nearest(value in $register::MIN_BITS..=$register::MAX_BITS,
+                                              offset in -0.49f64..0.49) {
+                        let real = value as f64 + offset;
+                        prop_assert_eq!($register::from_num(real).unwrap().to_bits(), value);
+                    }
+                }
+            }
+        };
+    }
+
+    register_properties!(initial_speed, InitialSpeed, u32, "pps");
+    register_properties!(drive_speed, DriveSpeed, u32, "pps");
+    register_properties!(acceleration, Acceleration, u32, "pps/s");
+    register_properties!(deceleration, Deceleration, u32, "pps/s");
+    register_properties!(jerk, Jerk, u32, "pps/s²");
+    register_properties!(deceleration_jerk, DecelerationJerk, u32, "pps/s²");
+    register_properties!(
+        manual_deceleration_point,
+        ManualDecelerationPoint,
+        u32,
+        "pulses"
+    );
+    register_properties!(finish_point, FinishPoint, i32, "pulses");
+    register_properties!(centre, Centre, i32, "pulses");
+}
