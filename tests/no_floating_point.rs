@@ -40,6 +40,10 @@ const SOURCES: &[(&str, &str)] = &[
         include_str!("../src/interpolation/mod.rs"),
     ),
     (
+        "src/interpolation/drive.rs",
+        include_str!("../src/interpolation/drive.rs"),
+    ),
+    (
         "src/interpolation/linear.rs",
         include_str!("../src/interpolation/linear.rs"),
     ),

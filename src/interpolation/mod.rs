@@ -3,6 +3,8 @@
 //! between two evaluations. A speed profile decides how many steps a cycle takes; a geometry
 //! decides where those steps put the axes.
 
+mod drive;
 pub mod linear;
 
+pub use drive::{InterpolationState, LinearInterpolation};
 pub use linear::{Line, Walk};
