@@ -163,3 +163,51 @@ fn a_profile_past_either_end_holds_the_axes_at_that_end() {
     let last = line.drive(&mut profile).take(100).last().unwrap();
     assert_eq!((last.step, last.axes), (0, [0, 0]));
 }
+
+/// Reference 003's line driven by the MCX514's own profile: SV 500 pps, DV 20,000 pps,
+/// AC = DC = 65,000 pps/s, at 1 ms (0.5, 20 pulses/cycle, 0.065 pulses/cycle²), with the manual
+/// deceleration point 50,000 − 3,075 = 46,925 from the helpers.
+#[test]
+fn the_mcx514_profile_drives_the_manuals_line_with_its_manual_deceleration_point() {
+    use profilegen::format::mcx514::{self, FinishPoint};
+    use profilegen::{DecelerationMode, Mcx514Parameters, Mcx514Trapezoidal};
+
+    let finish = [-20_000, 30_000, -50_000].map(|p| FinishPoint::from_bits(p).unwrap());
+    let line = Line::new(finish);
+    let initial = mcx514::InitialSpeed::from_bits(500).unwrap();
+    let drive = mcx514::DriveSpeed::from_bits(20_000).unwrap();
+    let deceleration = mcx514::Deceleration::from_bits(65_000).unwrap();
+    let pulses = mcx514::deceleration_pulses(initial, drive, deceleration);
+    let point = mcx514::linear_manual_deceleration_point(&finish, pulses).unwrap();
+    assert_eq!(point.to_bits(), 46_925);
+    let new_profile = || {
+        Mcx514Trapezoidal::new(
+            Mcx514Parameters {
+                pulses: line.steps(),
+                initial_speed: initial,
+                drive_speed: drive,
+                acceleration: mcx514::Acceleration::from_bits(65_000).unwrap(),
+                deceleration,
+                deceleration_mode: DecelerationMode::Manual(point),
+            },
+            profilegen::format::CycleTime::from_seconds(1e-3).unwrap(),
+        )
+        .unwrap()
+    };
+    let mut profile = new_profile();
+    let (_, most) = run(&line, &mut profile);
+    assert_eq!(most, 20);
+    // The creep: the cycle-by-cycle ramp down (20 − 0.065·k for k = 1 … 300) outputs about
+    // 3,065 pulses, about 10 fewer than the manual's continuous 3,075, and the point is crossed
+    // within a cycle (≤ 20 pulses) of 46,925: so roughly 10 pulses at 0.5 per cycle are left,
+    // about 20 cycles at SV, and the stop from SV is within the limits.
+    assert!(!profile.limits().exempt);
+    let mut alone = new_profile();
+    let states: Vec<_> = alone.states_until_complete().collect();
+    let cruise_end = states.iter().rposition(|s| s.velocity == 20).unwrap();
+    let creep = states[cruise_end..]
+        .iter()
+        .filter(|s| s.velocity == 0.5)
+        .count();
+    assert!((15..=25).contains(&creep), "{creep} cycles at SV");
+}

@@ -35,6 +35,7 @@ const SOURCES: &[(&str, &str)] = &[
     ("src/velocity.rs", include_str!("../src/velocity.rs")),
     ("src/state.rs", include_str!("../src/state.rs")),
     ("src/waveform.rs", include_str!("../src/waveform.rs")),
+    ("src/mcx514.rs", include_str!("../src/mcx514.rs")),
     (
         "src/interpolation/mod.rs",
         include_str!("../src/interpolation/mod.rs"),
