@@ -197,13 +197,16 @@ impl Mcx514Trapezoidal {
             if self.stopping && velocity <= p.initial {
                 return 0; // a smooth stop ends at SV, as the chip's decelerating stop does
             }
-            // Down by DC, never below SV (the creep).
+            // Down by DC, never below SV (the creep). No overflow: 0 ≤ velocity and
+            // DC < 2⁶³ in raw bits.
             return (velocity - p.deceleration).max(p.initial);
         }
         if velocity == 0 {
             p.initial // the start: SV at once
         } else {
-            (velocity + p.acceleration).min(p.drive)
+            // Saturating: at a cycle of seconds AC alone is near 2³¹ pulses/cycle², and with the
+            // velocity it can pass i64 in raw bits; DV caps the sum anyway.
+            velocity.saturating_add(p.acceleration).min(p.drive)
         }
     }
 }

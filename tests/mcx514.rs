@@ -225,3 +225,28 @@ proptest! {
         prop_assert_eq!(axis.state().position.to_bits(), finish);
     }
 }
+
+#[test]
+fn the_largest_registers_at_a_long_cycle_do_not_overflow() {
+    // At 2 s: AC = (2^29 − 1)·4 = 2,147,483,644 pulses/cycle², just under I32F32's 2^31; SV
+    // 8,000,000 pulses/cycle. The speed-up from SV would pass i64 in raw bits unless saturated.
+    let two_seconds = CycleTime::from_seconds(2.0).unwrap();
+    for mode in [
+        DecelerationMode::Automatic,
+        DecelerationMode::Manual(ManualDecelerationPoint::from_bits(1 << 29).unwrap()),
+    ] {
+        let parameters = Mcx514Parameters {
+            pulses: 1_073_741_823,
+            initial_speed: InitialSpeed::from_bits(4_000_000).unwrap(),
+            drive_speed: DriveSpeed::MAX,
+            acceleration: Acceleration::MAX,
+            deceleration: Deceleration::MAX,
+            deceleration_mode: mode,
+        };
+        let mut axis = Mcx514Trapezoidal::new(parameters, two_seconds).unwrap();
+        let mut checker = Checker::new(&axis);
+        checker.run_until_complete(&mut axis, 1_000).unwrap();
+        assert!(axis.is_complete());
+        assert_eq!(axis.state().position, 1_073_741_823);
+    }
+}
