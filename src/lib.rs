@@ -5,6 +5,8 @@
 pub mod conformance;
 mod error;
 pub mod format;
+pub mod interpolation;
+mod mcx514;
 pub mod reference;
 mod scurve;
 mod state;
@@ -13,6 +15,7 @@ mod velocity;
 pub mod waveform;
 
 pub use error::{Error, Range};
+pub use mcx514::{DecelerationMode, Mcx514Parameters, Mcx514Trapezoidal};
 pub use scurve::{SCurve, ScurveParameters, ScurvePlan};
 pub use state::{Limits, ProfileGenerator, State, States, StopKind};
 pub use trapezoidal::{Trapezoidal, TrapezoidalParameters};

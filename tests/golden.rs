@@ -1,8 +1,12 @@
-//! The golden values of SPEC §11 (the Juno and MC1451A rows): each an `assert_eq!` on raw bits,
-//! with the manual's own figure beside it.
+//! The golden values of SPEC §11 (the Juno and MC1451A rows, and the MCX514 rows that need no
+//! circle geometry): each an `assert_eq!` on raw bits, with the manual's own figure beside it.
 
 use profilegen::format::juno::{Acceleration, TargetVelocity};
 use profilegen::format::mc1451a::{GearRatio, Jerk, MaxVelocity, ScurveAcceleration};
+use profilegen::format::mcx514::{
+    self, acceleration_for_change, deceleration_pulses, linear_manual_deceleration_point,
+    manual_deceleration_point, Deceleration, DriveSpeed, FinishPoint, InitialSpeed,
+};
 use profilegen::format::CycleTime;
 
 /// Juno User Guide p. 68, along the manual's own rounded chain: 9,765 cycles/s, 13.825
@@ -81,4 +85,46 @@ fn mc1451a_gear_ratio() {
     let negative = GearRatio::from_num(-11.39).unwrap().to_bits();
     assert_eq!(negative, -746_455);
     assert_eq!(negative as u32, 0xFFF4_9C29);
+}
+
+/// MCX514 manual §3.8.1 (reference 003): "finish point (X:-20000, Y:30000, Z:-50000), if the pulse
+/// number necessary for deceleration is 5000, … the user should set 50000-5000=45000 as the manual
+/// deceleration point of the main axis".
+#[test]
+fn mcx514_linear_manual_deceleration_point() {
+    let finish = [-20_000, 30_000, -50_000].map(|p| FinishPoint::from_bits(p).unwrap());
+    let point = linear_manual_deceleration_point(&finish, 5_000).unwrap();
+    assert_eq!(point.to_bits(), 45_000);
+}
+
+/// MCX514 manual §3.8.2: "If the initial speed is 500PPS and accelerated to 20KPPS in 0.3 SEC, the
+/// acceleration will be (20000−500)/0.3 = 65000PPS/SEC", written as "WR6 ← FDE8h".
+#[test]
+fn mcx514_circle_acceleration() {
+    let initial = InitialSpeed::from_bits(500).unwrap();
+    let drive = DriveSpeed::from_bits(20_000).unwrap();
+    let acceleration = acceleration_for_change(initial, drive, 0.3).unwrap();
+    assert_eq!(acceleration.to_bits(), 65_000);
+    assert_eq!(acceleration.to_bits(), 0xFDE8);
+}
+
+/// MCX514 manual §3.8.2: "the output pulses during acceleration will be (500+20000)×0.3/2 =3075.
+/// Thus, if we set the deceleration as same as the acceleration, the manual deceleration point
+/// will be 56568 - 3075=53493". 56,568 is the manual's short-axis count of the r = 10,000 circle,
+/// 7071 × 8 (the circle geometry itself is not in the crate yet).
+#[test]
+fn mcx514_circle_acceleration_pulses_and_manual_deceleration_point() {
+    let initial = InitialSpeed::from_bits(500).unwrap();
+    let drive = DriveSpeed::from_bits(20_000).unwrap();
+    let deceleration = Deceleration::from_bits(65_000).unwrap();
+    let pulses = deceleration_pulses(initial, drive, deceleration);
+    assert_eq!(pulses, 3_075);
+    let short_axis_pulses = 7_071 * 8;
+    assert_eq!(short_axis_pulses, 56_568);
+    let point = manual_deceleration_point(short_axis_pulses, pulses).unwrap();
+    assert_eq!(point.to_bits(), 53_493);
+    assert_eq!(
+        point,
+        mcx514::ManualDecelerationPoint::from_bits(53_493).unwrap()
+    );
 }

@@ -35,6 +35,19 @@ const SOURCES: &[(&str, &str)] = &[
     ("src/velocity.rs", include_str!("../src/velocity.rs")),
     ("src/state.rs", include_str!("../src/state.rs")),
     ("src/waveform.rs", include_str!("../src/waveform.rs")),
+    ("src/mcx514.rs", include_str!("../src/mcx514.rs")),
+    (
+        "src/interpolation/mod.rs",
+        include_str!("../src/interpolation/mod.rs"),
+    ),
+    (
+        "src/interpolation/drive.rs",
+        include_str!("../src/interpolation/drive.rs"),
+    ),
+    (
+        "src/interpolation/linear.rs",
+        include_str!("../src/interpolation/linear.rs"),
+    ),
 ];
 
 /// Whether `code` names `word` as a whole token (not inside a longer identifier).

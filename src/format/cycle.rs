@@ -139,7 +139,8 @@ impl CycleTime {
     }
 }
 
-fn check_duration(seconds: f64) -> Result<(), Error> {
+/// A duration must be finite and positive (parameter `duration`, in s).
+pub(super) fn check_duration(seconds: f64) -> Result<(), Error> {
     let (parameter, value, range) = ("duration", seconds, Range::positive("s"));
     if !seconds.is_finite() {
         return Err(Error::NotFinite {

@@ -8,6 +8,7 @@
 mod cycle;
 pub mod juno;
 pub mod mc1451a;
+pub mod mcx514;
 
 pub use cycle::CycleTime;
 

@@ -1,0 +1,10 @@
+//! Interpolation geometries (SPEC §12): pure functions from the number of interpolation steps
+//! taken to the integer position of every axis, in O(1) per evaluation however many steps lie
+//! between two evaluations. A speed profile decides how many steps a cycle takes; a geometry
+//! decides where those steps put the axes.
+
+mod drive;
+pub mod linear;
+
+pub use drive::{InterpolationState, LinearInterpolation};
+pub use linear::{Line, Walk};
