@@ -1,6 +1,7 @@
 #![doc = include_str!("../README.md")]
 #![cfg_attr(not(feature = "std"), no_std)]
 
+mod bisect;
 #[cfg(feature = "conformance")]
 pub mod conformance;
 mod error;

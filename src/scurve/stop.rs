@@ -2,6 +2,7 @@
 //! from the present acceleration and velocity.
 
 use super::schedule::Limits64;
+use crate::bisect::last_true;
 
 /// The velocity (2^-32 units) still shed while raising a negative acceleration `-magnitude` to
 /// zero in jerk steps: `Σ (magnitude − k·J)` over the positive terms.
@@ -26,20 +27,12 @@ pub(super) fn stopping_acceleration(acceleration: i64, velocity: i64, limits: Li
         let after = i128::from(velocity) + i128::from(next);
         after >= 0 && after >= velocity_to_level_off(-next, i128::from(jerk))
     };
-    let mut low = (acceleration - jerk).max(floor);
-    let mut high = acceleration + jerk;
+    let low = (acceleration - jerk).max(floor);
+    let high = acceleration + jerk;
     if feasible(low) {
         return low;
     }
     // feasible(high) holds on every cycle of a stop (the smooth-stop property tests step it from
-    // every phase); find the smallest feasible value.
-    while high - low > 1 {
-        let middle = low + (high - low) / 2;
-        if feasible(middle) {
-            high = middle;
-        } else {
-            low = middle;
-        }
-    }
-    high
+    // every phase); the smallest feasible value is the one after the last infeasible.
+    last_true(low, high, |next| !feasible(next)) + 1
 }

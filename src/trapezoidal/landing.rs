@@ -15,6 +15,8 @@
 //! The result is at most six runs: rising by A, one cycle at c, the extra units at c + 1, c,
 //! falling by D to the landing, rest.
 
+use crate::bisect::last_true;
+
 /// A run in the frame where the destination lies ahead: `(first velocity, change per cycle,
 /// cycles)`, I32F32 bits.
 pub(super) type Run = (i64, i64, u64);
@@ -139,18 +141,7 @@ fn highest_level(envelope: &Envelope, distance: i128, max: i128, below_max: (i12
         }
     };
     // The largest k in 1 ..= count with fits(k), or 0 (fits is monotone, true then false).
-    let last_fitting = |count: i128, fits: &dyn Fn(i128) -> bool| {
-        let (mut low, mut high) = (0, count + 1);
-        while high - low > 1 {
-            let middle = low + (high - low) / 2;
-            if fits(middle) {
-                low = middle;
-            } else {
-                high = middle;
-            }
-        }
-        low
-    };
+    let last_fitting = |count: i128, fits: &dyn Fn(i128) -> bool| last_true(0, count + 1, fits);
     let rise = |i: i128| envelope.first + i * envelope.acceleration;
     let fall = |j: i128| envelope.landing + j * envelope.deceleration;
     let i = last_fitting(below_max.0.min(up), &|i| {

@@ -6,6 +6,7 @@ mod landing;
 
 use fixed::types::I32F32;
 
+use crate::bisect::last_true;
 use crate::format::juno::{Acceleration, TargetVelocity};
 use crate::state::{advance, Limits, ProfileGenerator, State, StopKind};
 use crate::Error;
@@ -656,16 +657,7 @@ impl Trapezoidal {
             }
         } else {
             // may(0) holds by convention, may(rising) does not: bisect.
-            let (mut low, mut high) = (0u64, rising);
-            while high - low > 1 {
-                let middle = low + (high - low) / 2;
-                if may(middle) {
-                    low = middle;
-                } else {
-                    high = middle;
-                }
-            }
-            low
+            last_true(0u64, rising, may)
         };
         let last = if cycles == 0 {
             velocity
