@@ -380,6 +380,11 @@ pub(super) fn take(
     if left == 1 && (area == 0 || available == 0) {
         return None; // no pair takes less than 2 (a width of 1, a span of 2)
     }
+    // A pair takes w·k with w + k < total (both notches inside the move), so less than
+    // total²/4, and two pairs less than total²/2; q units only add to the remainder.
+    if left >= bounds.total.saturating_mul(bounds.total) / 2 {
+        return None;
+    }
     let mut try_fit = |pairs: &[Notch]| placed.try_add(pairs, main, bounds, jerk_limit);
     // The three placements that take remainders (measured over 100,000 random moves: first notch
     // in phases I–II with the second in the cruise or after phase V, and both in the cruise for

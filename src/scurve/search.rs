@@ -8,7 +8,7 @@
 //! the plan that wins. A last resort (two *fine units*, then ramps of one cycle) covers the few
 //! very short moves with a large jerk that notch pairs have no room in.
 
-use super::division::{div, div_ceil};
+use super::division::{div, div_ceil, div_rem};
 use super::remainder::{self, velocity_notch, Placement};
 use super::schedule::{Limits64, Schedule};
 use super::shape::{MainMove, Mix};
@@ -91,7 +91,10 @@ fn shapes(distance: u64, limits: Limits64, found: &mut [Shape; MAX_SHAPES]) -> u
         let peak = (jerk * a).min(acceleration);
         let to_velocity = div_ceil(velocity, peak).max(a);
         // peak·b·(a + b) ≤ D ⇔ b ≤ (√(a² + 4D/peak) − a)/2; D/peak < 2^63, a² < 2^47.
-        let quotient = div(distance, peak);
+        let (quotient, remainder) = div_rem(distance, peak);
+        // ⌈D/peak⌉: with ⌈⌈D/peak⌉/b⌉ = ⌈D/(peak·b)⌉, each uncapped second ramp's cruise is then a
+        // division of this (often 32 bits) by b, not of D by peak·b.
+        let quotient_up = quotient + u64::from(remainder != 0);
         let root = if quotient < 1 << 60 {
             (a * a + 4 * quotient).isqrt()
         } else {
@@ -123,23 +126,38 @@ fn shapes(distance: u64, limits: Limits64, found: &mut [Shape; MAX_SHAPES]) -> u
             } else {
                 peak.saturating_mul(b)
             };
-            let target = match aim.checked_mul(a + b) {
-                Some(covered) if covered <= distance => aim,
-                _ => div(distance, a + b),
-            };
-            if target == 0 {
-                continue;
-            }
-            let cruise = if target == velocity {
-                *at_velocity.get_or_insert_with(|| div_ceil(distance, velocity))
-            } else {
-                div_ceil(distance, target)
+            let ramps = a + b;
+            let (target, cruise) = match aim.checked_mul(ramps) {
+                Some(covered) if covered <= distance => {
+                    let cruise = if aim == velocity {
+                        *at_velocity.get_or_insert_with(|| div_ceil(distance, velocity))
+                    } else {
+                        // aim = peak·b: ⌈D/(peak·b)⌉ = ⌈⌈D/peak⌉/b⌉ (see `quotient_up`).
+                        div_ceil(quotient_up, b)
+                    };
+                    (aim, cruise)
+                }
+                _ => {
+                    // The cap t = ⌊D/(a + b)⌋: D = t·(a + b) + r with r < a + b, so ⌈D/t⌉ =
+                    // (a + b) + ⌈r/t⌉, which is (a + b) + [r > 0] once t ≥ a + b (no second
+                    // division).
+                    let (target, rest) = div_rem(distance, ramps);
+                    if target == 0 {
+                        continue;
+                    }
+                    let cruise = if target >= ramps {
+                        ramps + u64::from(rest != 0)
+                    } else {
+                        div_ceil(distance, target)
+                    };
+                    (target, cruise)
+                }
             };
             let shape = Shape {
                 a,
                 b,
                 target,
-                cycles: a + b + cruise.max(a + b),
+                cycles: ramps + cruise.max(ramps),
             };
             // Fastest first (an insertion sort of at most six).
             let mut k = len;
@@ -155,6 +173,21 @@ fn shapes(distance: u64, limits: Limits64, found: &mut [Shape; MAX_SHAPES]) -> u
 }
 
 impl Shape {
+    /// The mix that meets the velocity from below, and — unless it meets it exactly — the one
+    /// from above with a velocity notch; the faster first.
+    fn candidates(&self, distance: u64, limits: Limits64) -> [Option<Candidate>; 2] {
+        let under = self.candidate(true, distance, limits);
+        let over = match under {
+            Some(c) if c.mix.velocity == self.target => None,
+            _ => self.candidate(false, distance, limits),
+        };
+        if matches!((&under, &over), (Some(u), Some(o)) if o.c < u.c) {
+            [over, under]
+        } else {
+            [under, over]
+        }
+    }
+
     /// The shape with the unit mix that meets its velocity exactly or from below (`under`), or
     /// from above with a velocity notch, and the shortest cruise that covers the distance.
     fn candidate(&self, under: bool, distance: u64, limits: Limits64) -> Option<Candidate> {
@@ -186,9 +219,12 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
     let mut found = [Shape::default(); MAX_SHAPES];
     let len = shapes(distance, limits, &mut found);
     let mut planned = false;
-    'shapes: for shape in &found[..len] {
+    // Candidates tried at their own cruise already, ahead of their turn: bit 2·shape + index.
+    let mut tried = 0u16;
+    'shapes: for (i, shape) in found[..len].iter().enumerate() {
         // The mix that meets the velocity from below, and — unless it meets it exactly — the
-        // one from above with a velocity notch; the faster first.
+        // one from above with a velocity notch; the faster first (as [`Shape::candidates`],
+        // without copying them into an array).
         let under = shape.candidate(true, distance, limits);
         let over = match under {
             Some(c) if c.mix.velocity == shape.target => None,
@@ -200,12 +236,45 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
         } else {
             [&under, &over]
         };
-        for candidate in order.into_iter().flatten() {
-            for extra in 0..2 {
-                if complete(candidate, candidate.c + extra, &move_, out) {
-                    planned = true;
-                    break 'shapes;
+        for (k, candidate) in order.into_iter().enumerate() {
+            let Some(candidate) = candidate else {
+                continue;
+            };
+            if tried & (1 << (2 * i + k)) == 0 && complete(candidate, candidate.c, &move_, out) {
+                planned = true;
+                break 'shapes;
+            }
+            // A single unit has no cruise to end early: one cycle more of cruise leaves the
+            // notch pairs the same remainder (or that and the unit's whole area). Before that,
+            // the later shapes' candidates as fast as this one, at their own cruise (often the
+            // next second ramp with a velocity notch, at the same length). None longer than
+            // this one, and every candidate tried after it here is at least as long, so the
+            // plan is never longer than without this.
+            if candidate.mix.counts.iter().sum::<u64>() == 1 {
+                let total = candidate.mix.a + candidate.mix.b + candidate.c;
+                for (j, later) in found[..len].iter().enumerate().skip(i + 1) {
+                    if later.cycles > total {
+                        break;
+                    }
+                    for (m, early) in later.candidates(distance, limits).iter().enumerate() {
+                        let bit = 1 << (2 * j + m);
+                        let Some(early) = early else {
+                            continue;
+                        };
+                        if tried & bit != 0 || early.mix.a + early.mix.b + early.c > total {
+                            continue;
+                        }
+                        tried |= bit;
+                        if complete(early, early.c, &move_, out) {
+                            planned = true;
+                            break 'shapes;
+                        }
+                    }
                 }
+            }
+            if complete(candidate, candidate.c + 1, &move_, out) {
+                planned = true;
+                break 'shapes;
             }
         }
     }
@@ -261,6 +330,7 @@ struct Move {
 
 /// The early units of `mix` with phase V from cycle `c` that take the most of `over` (2^-32
 /// counts), largest area first, and what they leave.
+#[inline]
 fn early_units(mix: &Mix, c: u64, mut over: u64) -> ([u64; 4], u64) {
     let areas = mix.areas();
     let kinds = mix.kinds();

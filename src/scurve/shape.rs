@@ -141,11 +141,6 @@ impl MainMove {
         self.groups().iter().map(f).max().unwrap_or(0)
     }
 
-    /// The least of `f` over the groups (0 when empty).
-    fn least(&self, f: impl Fn(&Group) -> u64) -> u64 {
-        self.groups().iter().map(f).min().unwrap_or(0)
-    }
-
     /// Cycles of the move: the longest unit's.
     pub fn total(&self) -> u64 {
         self.most(|g| g.a + g.b + g.c)
@@ -154,21 +149,34 @@ impl MainMove {
     /// The phase boundaries every unit agrees on: where the move's jerk, acceleration and
     /// velocity have a known sign, whatever the mix. See [`Bounds`].
     pub fn bounds(&self) -> Bounds {
-        Bounds {
-            last_rise_start: self.most(|g| g.a),
-            first_fall_end: self.least(|g| g.b),
-            rise_end: self.most(|g| g.a + g.b),
-            first_deceleration: self.least(|g| g.c),
-            deceleration_jerked: self.most(|g| g.c + g.a),
-            first_landing: self.least(|g| g.c + g.b),
-            total: self.total(),
-            floor: Group {
-                count: self.groups().iter().map(|g| g.count).sum(),
-                a: self.least(|g| g.a),
-                b: self.least(|g| g.b),
-                c: self.least(|g| g.c),
-            },
+        // One pass over the groups for all eleven extremes (not one per extreme).
+        let Some((first, rest)) = self.groups().split_first() else {
+            return Bounds::default();
+        };
+        let mut bounds = Bounds {
+            last_rise_start: first.a,
+            first_fall_end: first.b,
+            rise_end: first.a + first.b,
+            first_deceleration: first.c,
+            deceleration_jerked: first.c + first.a,
+            first_landing: first.c + first.b,
+            total: first.a + first.b + first.c,
+            floor: *first,
+        };
+        for g in rest {
+            bounds.last_rise_start = bounds.last_rise_start.max(g.a);
+            bounds.first_fall_end = bounds.first_fall_end.min(g.b);
+            bounds.rise_end = bounds.rise_end.max(g.a + g.b);
+            bounds.first_deceleration = bounds.first_deceleration.min(g.c);
+            bounds.deceleration_jerked = bounds.deceleration_jerked.max(g.c + g.a);
+            bounds.first_landing = bounds.first_landing.min(g.c + g.b);
+            bounds.total = bounds.total.max(g.a + g.b + g.c);
+            bounds.floor.count += g.count;
+            bounds.floor.a = bounds.floor.a.min(g.a);
+            bounds.floor.b = bounds.floor.b.min(g.b);
+            bounds.floor.c = bounds.floor.c.min(g.c);
         }
+        bounds
     }
 }
 
@@ -179,7 +187,7 @@ impl MainMove {
 /// - jerk ≤ 0 on `[last_rise_start, first_landing)` (no unit in phase I or VII), so one unit
 ///   higher fits there;
 /// - acceleration ≥ 0 before `first_deceleration`, ≤ 0 from `rise_end − 1` on.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub(super) struct Bounds {
     /// The latest end of phase I.
     pub last_rise_start: u64,
