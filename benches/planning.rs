@@ -143,6 +143,54 @@ impl Timings {
 }
 
 /// The continuous optimal duration of `m`, cycles.
+/// The same registers from a fractional position: after a stop an axis rests between counts, so
+/// a move's distance is any number of raw units (2^-32 counts), not a whole number of counts as
+/// from 0. The distance in raw units is log-uniform over 1 … 2^62 (its own stream per move), the
+/// destination the move's own. Durations only (not timed): counted against the same bound.
+fn fractional_starts(moves: &[Move]) {
+    let mut over = Vec::with_capacity(moves.len());
+    let mut refused = 0;
+    let mut worst: Option<(f64, String)> = None;
+    for m in moves {
+        let mut random = moves::SplitMix64::for_move(m.index ^ 0xF4AC_7105);
+        let magnitude = random.log_uniform(62) as i64;
+        let distance = if random.next_u64() >> 63 == 1 {
+            -magnitude
+        } else {
+            magnitude
+        };
+        let target = i64::from(m.raw.0) << 32;
+        let start = fixed::types::I32F32::from_bits(target.wrapping_sub(distance));
+        let Ok(axis) = SCurve::with_position(m.parameters, start) else {
+            refused += 1; // one raw unit with a jerk of one raw unit: unreachable, by design
+            continue;
+        };
+        let counts = magnitude as f64 / 4_294_967_296.0;
+        let optimum = scurve_duration(counts, m.velocity, m.acceleration, m.jerk).max(1.0);
+        let excess = axis.duration() as f64 - optimum;
+        if worst.as_ref().is_none_or(|(w, _)| excess > *w) {
+            worst = Some((
+                excess,
+                format!("{}, from {} raw units away", m.describe(), distance),
+            ));
+        }
+        over.push(excess);
+    }
+    let beyond = over.iter().filter(|&&x| x > WORST_OVER_OPTIMUM).count();
+    let far = over.iter().filter(|&&x| x > 100.0).count();
+    println!();
+    println!(
+        "From fractional positions ({} moves, distance log-uniform in raw units; {refused} refused as \
+         unreachable): {beyond} over optimum + {WORST_OVER_OPTIMUM} ({far} by more than 100 cycles); \
+         {}",
+        over.len(),
+        if beyond == 0 { "PASS" } else { "FAIL (issue #11)" },
+    );
+    if let Some((excess, move_)) = worst {
+        println!("farthest over the optimum ({excess:+.1} cycles): {move_}");
+    }
+}
+
 fn optimum(m: &Move) -> f64 {
     scurve_duration(m.distance.abs(), m.velocity, m.acceleration, m.jerk)
 }
@@ -449,6 +497,8 @@ fn main() {
         verdict(worst <= WORST_OVER_OPTIMUM),
         verdict(mean <= MEAN_OVER_OPTIMUM),
     );
+
+    fractional_starts(&moves);
 
     println!();
     println!(

@@ -476,11 +476,39 @@ proptest! {
                 let states = run_move(&mut axis)?;
                 prop_assert_eq!(*states.last().unwrap(), State::at_rest(I32F32::from_bits(target)));
                 prop_assert_eq!(states.len() as u64, axis.plan().total);
+                // Not asserted here: the duration bound. From fractional positions it does not
+                // hold yet (issue #11, open): the `planning` bench counts those moves.
             }
             Err(error) => {
                 prop_assert!(offset == 1 && p.jerk.to_bits() == 1, "{error}");
             }
         }
+    }
+
+    /// A distance within the acceleration and the velocity and at most half the jerk moves in
+    /// three cycles, the fewest any move takes: the whole distance as the velocity of one cycle
+    /// (jerk +d, −2d, +d; acceleration d, −d, 0). By hand: a move must accelerate, decelerate
+    /// and end with the acceleration back at zero, one cycle each.
+    #[test]
+    fn the_smallest_moves_take_three_cycles(
+        p in any_scurve_move(),
+        raw in 1u64..(1 << 40),
+        negative in any::<bool>(),
+    ) {
+        let limit = (u64::from(p.jerk.to_bits()) / 2)
+            .min(u64::from(p.max_acceleration.to_bits()) << 16)
+            .min(u64::from(p.max_velocity.to_bits()) << 16);
+        prop_assume!(limit >= 1);
+        let distance = 1 + raw % limit;
+        let target = i64::from(p.destination.to_bits()) << 32;
+        let offset = distance as i64;
+        let start = I32F32::from_bits(if negative { target + offset } else { target - offset });
+        let mut axis = SCurve::with_position(p, start).unwrap();
+        prop_assert_eq!(axis.plan().total, 3);
+        let states = run_move(&mut axis)?;
+        let step = if negative { -offset } else { offset };
+        prop_assert_eq!(states[0].velocity.to_bits(), step);
+        prop_assert_eq!(*states.last().unwrap(), State::at_rest(I32F32::from_bits(target)));
     }
 
     /// Plans over the whole register ranges, moves of any length (too long to step): within 3

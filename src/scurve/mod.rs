@@ -188,16 +188,22 @@ fn plan_move(
         out.clear();
         return Ok(direction);
     }
-    if magnitude == 1 {
-        // One raw unit: a velocity of 1 on one cycle jerks by +1, −2, +1.
-        if limits.jerk < 2 {
-            return Err(Error::Unreachable {
-                parameter: "destination",
-                reason: "it is 2^-32 counts away, and moving that little needs a jerk of 2^-31 \
-                         counts/cycle³ (2 raw units): raise the jerk or choose another destination",
-            });
-        }
-        out.single_unit(direction);
+    if magnitude == 1 && limits.jerk < 2 {
+        return Err(Error::Unreachable {
+            parameter: "destination",
+            reason: "it is 2^-32 counts away, and moving that little needs a jerk of 2^-31 \
+                     counts/cycle³ (2 raw units): raise the jerk or choose another destination",
+        });
+    }
+    // A velocity of the whole distance on one cycle, where the limits allow it: three cycles,
+    // the fewest any move takes (a move shorter than a cycle of the continuous optimum, common
+    // from the fractional position a stop leaves).
+    if magnitude
+        <= (limits.jerk / 2)
+            .min(limits.acceleration)
+            .min(limits.velocity)
+    {
+        out.pulse(magnitude, direction);
         return Ok(direction);
     }
     if search::search(magnitude, direction, limits, out) {

@@ -227,10 +227,14 @@ impl Schedule {
         self.plan = ScurvePlan::default();
     }
 
-    /// Makes this a move of one raw unit: a velocity of 1 on one cycle (jerk +1, −2, +1).
-    pub fn single_unit(&mut self, direction: i64) {
+    /// Makes this a move of `distance` raw units in three cycles, the fewest any move takes: a
+    /// velocity of `distance` on one cycle (jerk `+d, −2d, +d`), for `distance` within the
+    /// acceleration and the velocity and at most half the jerk (checked by the caller).
+    pub fn pulse(&mut self, distance: u64, direction: i64) {
         self.main_len = 0;
-        for (cycle, amount) in [(2, 3), (1, -3), (0, 1)] {
+        // The changes +d, −3d, +3d, each below 2^33 and kept modulo 2^32 (see `jerks`).
+        let d = distance as i64;
+        for (cycle, amount) in [(2, 3 * d), (1, -3 * d), (0, d)] {
             self.prepend(cycle, amount * direction);
         }
         self.plan = ScurvePlan {
