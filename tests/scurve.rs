@@ -434,6 +434,37 @@ fn every_movable_distance_moves() {
     }
 }
 
+/// Moves from fractional positions with a jerk of one raw unit, where no shape near the
+/// continuous optimum left a remainder notch pairs could take and the planner fell back to ramps
+/// of one cycle (716 and 12,118 cycles): other ramps around the optimum plan them within 3 cycles
+/// of it (the bound of SPEC §8, against the floating-point reference).
+#[test]
+fn ramps_around_the_optimum_before_one_cycle_ramps() {
+    for (start, destination, velocity, acceleration, jerk) in [
+        (-4_294_968_010i64, -1, 239_124, 4_846, 1),
+        (219_043_319_980, 51, 41_989_945, 12_190, 1),
+    ] {
+        let p = ScurveParameters {
+            destination: Destination::from_bits(destination).unwrap(),
+            max_velocity: MaxVelocity::from_bits(velocity).unwrap(),
+            max_acceleration: ScurveAcceleration::from_bits(acceleration).unwrap(),
+            jerk: Jerk::from_bits(jerk).unwrap(),
+        };
+        let mut axis = SCurve::with_position(p, I32F32::from_bits(start)).unwrap();
+        let target = i64::from(destination) << 32;
+        let distance = (target - start).unsigned_abs() as f64 / 4_294_967_296.0;
+        let best = optimum(&p, distance);
+        let total = axis.plan().total;
+        assert!(total as f64 <= best + 3.0, "{total} cycles, optimum {best}");
+        let states = run_move(&mut axis).unwrap();
+        assert_eq!(states.len() as u64, total);
+        assert_eq!(
+            *states.last().unwrap(),
+            State::at_rest(I32F32::from_bits(target))
+        );
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(10_000))]
 

@@ -290,7 +290,7 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
             planned = true;
         }
     }
-    planned || one_cycle_ramps(&move_, out)
+    planned || around(&move_, out) || one_cycle_ramps(&move_, out)
 }
 
 /// A move this many cycles long or more has room for notch pairs wherever a shape fits.
@@ -475,6 +475,71 @@ fn finish(
     );
     true
 }
+
+/// Ramps around the continuous optimum's (`a` within three of it, `b` up to six more), fastest
+/// first, at most [`AROUND_TRIES`] of them: where the shapes of [`shapes`] leave a remainder no
+/// notch pairs can take — mostly with a jerk of one or two raw units, where no fine units can be
+/// kept aside — another pair of ramps often divides the distance better. Before the one-cycle
+/// ramps, whose moves are exact but far longer.
+fn around(move_: &Move, out: &mut Schedule) -> bool {
+    let (distance, limits) = (move_.distance, move_.limits);
+    let mut found = [Shape::default(); MAX_SHAPES];
+    let len = shapes(distance, limits, &mut found);
+    let a0 = found[..len].iter().map(|s| s.a).min().unwrap_or(1);
+    let mut wide = [Shape::default(); AROUND_SHAPES];
+    let mut count = 0;
+    for a in a0.saturating_sub(3).max(1)..=a0 + 3 {
+        let Some(peak) = limits
+            .jerk
+            .checked_mul(a)
+            .map(|p| p.min(limits.acceleration))
+        else {
+            continue;
+        };
+        for b in a..=a + 6 {
+            let Some(aim) = peak.checked_mul(b).map(|v| v.min(limits.velocity)) else {
+                continue;
+            };
+            let ramps = a + b;
+            let target = aim.min(div(distance, ramps));
+            if target == 0 || count == AROUND_SHAPES {
+                continue;
+            }
+            let cruise = div_ceil(distance, target);
+            wide[count] = Shape {
+                a,
+                b,
+                target,
+                cycles: ramps + cruise.max(ramps),
+            };
+            count += 1;
+        }
+    }
+    let wide = &mut wide[..count];
+    wide.sort_unstable_by_key(|shape| shape.cycles);
+    let mut tries = 0;
+    for shape in wide.iter() {
+        let Some(candidate) = shape.candidate(true, distance, limits) else {
+            continue;
+        };
+        for extra in 0..2 {
+            if tries == AROUND_TRIES {
+                return false;
+            }
+            tries += 1;
+            if complete(&candidate, candidate.c + extra, move_, out) {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+/// Shapes [`around`] lists: seven first ramps by seven second ramps.
+const AROUND_SHAPES: usize = 49;
+
+/// Attempts [`around`] makes at most (each a few thousand Cortex-M4 instructions).
+const AROUND_TRIES: usize = 24;
 
 /// The plan with ramps of one cycle: `tb(1, 1, c)` units, as many as the jerk, the
 /// acceleration and the velocity allow, one early unit per raw unit of overshoot. It has no
