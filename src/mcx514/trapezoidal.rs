@@ -74,7 +74,7 @@ struct PerCycle {
 /// Every cycle's velocity is at most the pulses left, so the move lands exactly on the finish
 /// point; the cycle after, the velocity drops to zero. A smooth stop decelerates by DC to SV and
 /// stops from there (the chip's decelerating stop); an abrupt stop drops to zero on the next
-/// cycle. S-curve driving is not modelled yet.
+/// cycle. The S-curve is [`Mcx514SCurve`](crate::Mcx514SCurve).
 ///
 /// ```
 /// use profilegen::format::mcx514::{Acceleration, Deceleration, DriveSpeed, InitialSpeed};
