@@ -290,3 +290,13 @@ fn the_largest_registers_at_a_long_cycle_do_not_overflow() {
         assert_eq!(axis.state().position, 1_073_741_823);
     }
 }
+
+#[test]
+fn the_largest_manual_point_is_never_reached() {
+    // The register's top is past every finish point: as the late point above, DV to the finish
+    // point (40 while speeding up, then 6 cycles at 10) and the stop there.
+    let point = ManualDecelerationPoint::MAX;
+    let (v, exempt) = velocities(parameters(100, DecelerationMode::Manual(point)));
+    assert_eq!(v, [1, 2, 4, 6, 8, 9, 10, 10, 10, 10, 10, 10, 10, 0]);
+    assert!(exempt);
+}

@@ -213,7 +213,10 @@ impl Mcx514SCurve {
             initial: p.initial_speed.per_cycle(cycle)?.to_bits(),
             drive: p.drive_speed.per_cycle(cycle)?.to_bits(),
             manual_point: match p.deceleration_mode {
-                DecelerationMode::Manual(point) => Some(i64::from(point.to_bits()) << 32),
+                // Past 2³¹ − 1 pulses the shift would leave i64; such a point is never reached.
+                DecelerationMode::Manual(point) => {
+                    Some(i64::from(point.to_bits().min(i32::MAX as u32)) << 32)
+                }
                 _ => None,
             },
             automatic,
