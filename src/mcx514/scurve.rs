@@ -29,6 +29,9 @@ pub struct Mcx514ScurveParameters {
 struct Ramp {
     jerk: i64,
     cap: i64,
+    /// cap − jerk: a rate at or above it steps up to the cap itself (no overflow, unlike
+    /// rate + jerk at the largest registers).
+    cap_less_jerk: i64,
     /// [`Ramp::tail`] of the cap, saturated at `i64::MAX` (then never affordable).
     cap_tail: i64,
 }
@@ -54,18 +57,20 @@ impl Ramp {
     /// so the speed lands on its target with the rate at zero, every change within J. The
     /// invariant (rate + tail ≤ gap after the previous choice) makes rate − J always fit; the
     /// last resort, a rate ≤ J equal to the gap, lands exactly.
+    ///
+    /// No overflow: the rate and tail in hand were chosen with rate + tail ≤ the gap then
+    /// (< 2⁶³), so tail + rate is in range; a sum with the gap is compared as a difference.
     #[inline]
     fn next(&self, rate: i64, tail: i64, gap: i64) -> (i64, i64) {
-        let up = rate.saturating_add(self.jerk);
-        let (up, up_tail) = if up >= self.cap {
+        let (up, up_tail) = if rate >= self.cap_less_jerk {
             (self.cap, self.cap_tail)
         } else {
-            (up, tail.saturating_add(rate.max(0)))
+            (rate + self.jerk, tail + rate)
         };
-        if up.saturating_add(up_tail) <= gap {
+        if up <= gap && up_tail <= gap - up {
             return (up, up_tail);
         }
-        if rate.saturating_add(tail) <= gap {
+        if rate <= gap && tail <= gap - rate {
             return (rate, tail);
         }
         let down = rate - self.jerk;
@@ -149,9 +154,15 @@ pub struct Mcx514SCurve {
     finish: i64,
     initial: i64,
     drive: i64,
-    /// The manual deceleration point, raw I32F32 whole pulses (`None` unless manual).
-    manual_point: Option<i64>,
+    /// The manual deceleration point, raw I32F32 whole pulses, held below 2³¹ pulses (every
+    /// point from 2³⁰ on is past every finish point); `i64::MAX` unless manual.
+    manual_point: i64,
     automatic: bool,
+    /// The position (raw I32F32) at or past which a cycle that begins there, speeding up or at
+    /// DV, starts to decelerate: the manual point; with automatic deceleration, while speeding
+    /// up, half the finish point (rounded up: the pulses left, finish − p, are then ≤ those
+    /// output while speeding up, p), and at DV the finish point less those. `i64::MAX`: never.
+    trigger: i64,
     disabled: bool,
     speed_up: Ramp,
     slow_down: Ramp,
@@ -161,13 +172,12 @@ pub struct Mcx514SCurve {
     /// decelerating), ≥ 0, raw bits per cycle², and its tail S(rate).
     rate: i64,
     tail: i64,
-    /// Raw I32F32 pulses output up to the end of the last cycle that sped up.
-    accelerated: i64,
     /// A smooth stop was commanded: decelerate to SV, then stop.
     stopping: bool,
     complete: bool,
-    /// The last cycle was an event exempt from the limits (the start, a cut, the stop).
-    exempt: bool,
+    /// The velocity the last cycle wanted (raw I32F32) before the cut to the pulses left: what
+    /// [`limits`](ProfileGenerator::limits) tells the ends of the move by, off the per-cycle path.
+    wanted: i64,
 }
 
 impl Mcx514SCurve {
@@ -196,6 +206,7 @@ impl Mcx514SCurve {
             Ramp {
                 jerk,
                 cap,
+                cap_less_jerk: cap - jerk,
                 cap_tail: Ramp::tail(cap, jerk),
             }
         };
@@ -215,9 +226,9 @@ impl Mcx514SCurve {
             manual_point: match p.deceleration_mode {
                 // Past 2³¹ − 1 pulses the shift would leave i64; such a point is never reached.
                 DecelerationMode::Manual(point) => {
-                    Some(i64::from(point.to_bits().min(i32::MAX as u32)) << 32)
+                    i64::from(point.to_bits().min(i32::MAX as u32)) << 32
                 }
-                _ => None,
+                _ => i64::MAX,
             },
             automatic,
             disabled: p.deceleration_mode == DecelerationMode::Disabled,
@@ -227,97 +238,126 @@ impl Mcx514SCurve {
             phase: Phase::Start,
             rate: 0,
             tail: 0,
-            accelerated: 0,
+            trigger: i64::MAX, // set by the first cycle
             stopping: false,
             complete: finish == 0,
-            exempt: false,
+            wanted: 0,
         })
     }
 
-    /// The velocity of the next cycle before the cut to the pulses left (raw I32F32), and the
-    /// phase it belongs to.
-    fn next_velocity(&mut self) -> i64 {
-        let (position, velocity) = (self.state.position.to_bits(), self.state.velocity.to_bits());
-        if self.disabled && !self.stopping {
-            // DV from the first cycle (the start, an event, is the only one that jumps).
-            self.phase = Phase::Accelerating;
-            return self.drive;
-        }
-        if self.phase == Phase::Start {
-            self.phase = Phase::Accelerating;
-            return self.initial; // SV at once
-        }
-        if self.phase == Phase::Accelerating {
-            let left = self.finish - position;
-            let decelerate = self.stopping
-                || (self.automatic && left <= self.accelerated)
-                // The output count is the position's integer part: compare whole pulses.
-                || self.manual_point.is_some_and(|point| position >> 32 << 32 >= point);
-            if decelerate {
-                self.phase = Phase::Easing;
-            }
-        }
-        if self.phase == Phase::Easing {
-            if self.rate > 0 {
-                // Down by JK toward zero; the speed-up's tail kept the speed within DV.
-                let down = self.rate - self.speed_up.jerk;
-                (self.rate, self.tail) = if down > 0 {
-                    (down, self.tail - down)
-                } else {
-                    (0, 0)
-                };
-                return velocity + self.rate;
-            }
-            self.phase = Phase::Decelerating;
-            (self.rate, self.tail) = (0, 0);
+    /// The velocity of the next cycle before the cut to the pulses left (raw I32F32), with the
+    /// phase it leaves the move in.
+    #[inline]
+    fn next_velocity(&mut self, position: i64, velocity: i64) -> i64 {
+        if self.phase == Phase::Accelerating && position >= self.trigger {
+            self.phase = Phase::Easing;
         }
         match self.phase {
+            Phase::Accelerating => {
+                let gap = self.drive - velocity;
+                if gap == 0 && self.rate == 0 {
+                    return velocity; // cruising at DV: what the ramp would choose, sooner
+                }
+                (self.rate, self.tail) = self.speed_up.next(self.rate, self.tail, gap);
+                if self.rate == gap && gap != 0 {
+                    // At DV (or there this cycle): with automatic deceleration the trigger
+                    // becomes the finish point less the pulses output while speeding up.
+                    self.at_drive_speed(position + gap + velocity);
+                }
+                velocity + self.rate
+            }
             Phase::Decelerating => {
-                if self.stopping && velocity <= self.initial {
-                    return 0; // a smooth stop ends at SV, as the chip's decelerating stop does
+                let initial = self.initial;
+                if self.stopping && velocity <= initial {
+                    // A smooth stop ends at SV, as the chip's decelerating stop does.
+                    self.complete = true;
+                    return 0;
                 }
                 // Excess over SV ≥ 0: the slow-down never goes below SV.
-                let excess = velocity - self.initial;
+                let excess = velocity - initial;
+                if excess == 0 && self.rate == 0 {
+                    return velocity; // creeping at SV: what the ramp would choose, sooner
+                }
                 (self.rate, self.tail) = self.slow_down.next(self.rate, self.tail, excess);
                 velocity - self.rate
             }
-            _ => {
-                let gap = self.drive - velocity;
-                (self.rate, self.tail) = self.speed_up.next(self.rate, self.tail, gap);
-                velocity + self.rate
-            }
+            Phase::Easing => self.ease(velocity),
+            Phase::Start => self.start(),
         }
+    }
+
+    /// The first cycle: SV at once (DV with deceleration disabled, for good).
+    #[cold]
+    fn start(&mut self) -> i64 {
+        self.phase = Phase::Accelerating;
+        if self.disabled && !self.stopping {
+            self.trigger = i64::MAX;
+            (self.rate, self.tail) = (0, 0);
+            return self.drive;
+        }
+        self.trigger = if self.automatic {
+            // While speeding up: 2p ≥ finish, i.e. p ≥ ⌈finish/2⌉.
+            (self.finish + 1) >> 1
+        } else {
+            self.manual_point
+        };
+        if self.initial == self.drive {
+            self.at_drive_speed(self.initial);
+        }
+        if self.stopping {
+            // Stopped before the first cycle: SV once (the start), then the stop from there.
+            self.phase = Phase::Easing;
+        }
+        self.initial
+    }
+
+    /// At DV after a cycle that ended at `reached` (raw I32F32 pulses).
+    #[cold]
+    fn at_drive_speed(&mut self, reached: i64) {
+        if self.automatic {
+            self.trigger = self.finish - reached;
+        }
+    }
+
+    /// Deceleration has started: a rate still rising the speed falls by JK to zero first (the
+    /// speed-up's tail kept the speed within DV), then the slow-down begins.
+    #[cold]
+    fn ease(&mut self, velocity: i64) -> i64 {
+        if self.rate > 0 {
+            let down = self.rate - self.speed_up.jerk;
+            (self.rate, self.tail) = if down > 0 {
+                (down, self.tail - down)
+            } else {
+                (0, 0)
+            };
+            return velocity + self.rate;
+        }
+        self.phase = Phase::Decelerating;
+        (self.rate, self.tail) = (0, 0);
+        self.next_velocity(i64::MIN, velocity)
     }
 }
 
 impl ProfileGenerator for Mcx514SCurve {
     fn step(&mut self) -> State {
-        let before = self.state.velocity.to_bits();
-        let starting = self.phase == Phase::Start;
-        // (Deceleration disabled: the first cycle jumps to DV; later ones hold it.)
+        let (position, before) = (self.state.position.to_bits(), self.state.velocity.to_bits());
         let velocity = if self.complete {
+            self.wanted = 0;
             0
         } else {
-            let left = self.finish - self.state.position.to_bits();
-            let wanted = self.next_velocity();
-            // At most the pulses left: the move lands exactly on the finish point. i64: both
-            // below 2³¹ pulses in raw I32F32.
-            let velocity = wanted.min(left);
-            if velocity > before && self.phase == Phase::Accelerating {
-                self.accelerated = self.state.position.to_bits() + velocity;
+            let wanted = self.next_velocity(position, before);
+            self.wanted = wanted;
+            // At most the pulses left: the move lands exactly on the finish point, complete
+            // there (the next cycle drops to zero). i64: both below 2³¹ pulses in raw I32F32.
+            let left = self.finish - position;
+            if wanted >= left {
+                self.complete = true;
+                left
+            } else {
+                wanted
             }
-            self.exempt = starting || velocity < wanted || velocity == 0;
-            velocity
         };
-        if self.complete {
-            self.exempt = before != 0;
-        }
-        let state = advance(&mut self.state, I32F32::from_bits(velocity));
-        if velocity == 0 || state.position.to_bits() == self.finish {
-            // Complete at rest; on the finish point the next cycle drops to zero.
-            self.complete = true;
-        }
-        state
+        advance(&mut self.state, I32F32::from_bits(velocity))
     }
 
     fn state(&self) -> State {
@@ -330,12 +370,22 @@ impl ProfileGenerator for Mcx514SCurve {
 
     fn stop(&mut self, kind: StopKind) {
         match kind {
-            StopKind::Smooth => self.stopping = true,
+            StopKind::Smooth => {
+                self.stopping = true;
+                if self.phase == Phase::Accelerating {
+                    self.phase = Phase::Easing;
+                }
+            }
             StopKind::Abrupt => self.complete = true,
         }
     }
 
     fn limits(&self) -> Limits {
+        let velocity = self.state.velocity.to_bits();
+        let before = velocity - self.state.acceleration.to_bits();
+        // The events: the start (from rest to moving), the cut to the pulses left, the stop
+        // (from moving to rest).
+        let exempt = (before == 0) != (velocity == 0) || velocity < self.wanted;
         let (jerk, max_acceleration) = match self.phase {
             Phase::Decelerating => (self.slow_down.jerk, self.slow_down.cap),
             _ => (self.speed_up.jerk, self.speed_up.cap),
@@ -346,7 +396,7 @@ impl ProfileGenerator for Mcx514SCurve {
             max_slow_down: Some(I32F32::from_bits(self.slow_down.cap)),
             max_acceleration: Some(I32F32::from_bits(max_acceleration)),
             max_jerk: Some(I32F32::from_bits(jerk)),
-            exempt: self.exempt,
+            exempt,
         }
     }
 }
