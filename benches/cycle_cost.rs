@@ -6,7 +6,8 @@
 //! - `set up a move`: planning (S-curve) and validation (trapezoid);
 //! - `microstep lookup`: `MicrostepTable::outputs`;
 //! - `3-axis line per cycle`: `LinearInterpolation::step` (profile plus geometry, SPEC §16) on
-//!   reference 003's line, driven by the MCX514 trapezoid and by the crate's trapezoid, by phase;
+//!   reference 003's line, driven by the MCX514 trapezoid and S-curve and by the crate's
+//!   trapezoid, by phase;
 //! - `peers: per step`: stepgen and ramp-maker on the same move in steps, by phase windows as
 //!   above, delays per step;
 //! - `peers: per cycle` and `peers: plan`: rsruckig and s_curve on the bench move.
@@ -32,8 +33,8 @@ use criterion::{
 use profilegen::format::CycleTime;
 use profilegen::interpolation::Line;
 use profilegen::{
-    DecelerationMode, Mcx514Parameters, Mcx514Trapezoidal, ProfileGenerator, State, Trapezoidal,
-    TrapezoidalParameters,
+    DecelerationMode, Mcx514Parameters, Mcx514SCurve, Mcx514ScurveParameters, Mcx514Trapezoidal,
+    ProfileGenerator, State, Trapezoidal, TrapezoidalParameters,
 };
 
 /// The longest window timed, cycles or steps.
@@ -156,6 +157,30 @@ fn manual_line_mcx514() -> Mcx514Trapezoidal {
     .unwrap()
 }
 
+/// The MCX514 S-curve on the same line: the same registers, JK = DJ = 650,000 pps/s² (the rate
+/// reaches AC in 0.1 s).
+fn manual_line_mcx514_scurve() -> Mcx514SCurve {
+    use profilegen::format::mcx514::{
+        Acceleration, Deceleration, DecelerationJerk, DriveSpeed, InitialSpeed, Jerk,
+    };
+    Mcx514SCurve::new(
+        Mcx514ScurveParameters {
+            trapezoid: Mcx514Parameters {
+                pulses: manual_line().steps(),
+                initial_speed: InitialSpeed::from_bits(500).unwrap(),
+                drive_speed: DriveSpeed::from_bits(20_000).unwrap(),
+                acceleration: Acceleration::from_bits(65_000).unwrap(),
+                deceleration: Deceleration::from_bits(65_000).unwrap(),
+                deceleration_mode: DecelerationMode::Automatic,
+            },
+            jerk: Jerk::from_bits(650_000).unwrap(),
+            deceleration_jerk: DecelerationJerk::from_bits(650_000).unwrap(),
+        },
+        CycleTime::from_seconds(1e-3).unwrap(),
+    )
+    .unwrap()
+}
+
 /// The crate's trapezoid on the same line: 20 steps/cycle, 0.065 steps/cycle².
 fn manual_line_trapezoid() -> Trapezoidal {
     use profilegen::format::juno::{Acceleration, TargetVelocity};
@@ -211,6 +236,7 @@ fn line_phases<G: ProfileGenerator + Clone>(
 fn line_cost(c: &mut Criterion) {
     let mut group = c.benchmark_group("3-axis line per cycle");
     line_phases(&mut group, "mcx514", &manual_line_mcx514());
+    line_phases(&mut group, "mcx514_scurve", &manual_line_mcx514_scurve());
     line_phases(&mut group, "trapezoidal", &manual_line_trapezoid());
     group.finish();
 }
