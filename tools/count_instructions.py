@@ -487,6 +487,122 @@ def measure_other_generators(probe: Probe, moves: int) -> tuple[dict[str, list[i
     return steps, setups
 
 
+# Linear interpolation ------------------------------------------------------------------------------
+
+# The manual's line (reference 003): finish (-20000, 30000, -50000), and its MCX514 registers at a
+# 1 ms cycle: SV 500 pps, DV 20,000 pps, AC = DC = 65,000 pps/s (0.5 and 20 pulses/cycle, 0.065
+# pulses/cycle²), automatic, manual at 45,000 and disabled deceleration.
+MANUAL_LINE = (-20_000, 30_000, -50_000)
+MANUAL_LINE_MCX514 = [(1000, 500, 20_000, 65_000, 65_000, mode, 45_000) for mode in (0, 1, 2)]
+# The same line driven by the crate's trapezoid: 20 steps/cycle (16.16), 0.065 steps/cycle² (8.24).
+MANUAL_LINE_TRAPEZOID = (20 << 16, round(0.065 * 2**24), 0, 0)
+LINE_PROFILES = ("mcx514", "trapezoid", "mcx514_scurve")
+# The manual's line driven by the MCX514 S-curve: the same registers, JK = DJ = 650,000 pps/s²
+# (the rate reaches AC in 0.1 s).
+MANUAL_LINE_MCX514_SCURVE = [registers + (650_000, 650_000) for registers in MANUAL_LINE_MCX514]
+
+
+def random_line(rng, steps: int) -> tuple[int, int, int]:
+    """A 3-axis finish point whose long axis is `steps` pulses: the long axis at a random place and
+    sign, the others anywhere within it."""
+    axes = [rng.randint(-steps, steps) for _ in range(3)]
+    axes[rng.randrange(3)] = steps if rng.random() < 0.5 else -steps
+    return tuple(axes)
+
+
+def random_mcx514_lines(n: int, seed: int = 14) -> list[tuple[tuple[int, int, int], tuple]]:
+    """Deterministic MCX514-driven lines of at most a few thousand cycles: L log-uniform in
+    1 .. 10^6 pulses, a cycle of 100 µs, 250 µs or 1 ms, DV and AC log-uniform above the bounds
+    that keep the move short, SV log-uniform up to DV, automatic (AC = DC), manual (a random
+    point and DC) or disabled deceleration."""
+    import math
+    import random
+    rng = random.Random(seed)
+    log_uniform = lambda low, high: int(math.exp(rng.uniform(math.log(low), math.log(max(low, high)))))
+    lines = []
+    for _ in range(n):
+        steps = log_uniform(1, 1_000_000)
+        cycle_us = rng.choice((100, 250, 1000))
+        cycle = cycle_us * 1e-6
+        drive = log_uniform(max(1, math.ceil(steps / (2000 * cycle))), 8_000_000)
+        initial = log_uniform(max(1, math.ceil(steps / (8000 * cycle))), drive) if rng.random() < 0.9 \
+            else drive
+        initial = min(initial, drive)
+        acceleration = log_uniform(max(1, math.ceil(drive / (1500 * cycle))), 536_870_911)
+        mode = rng.choice((0, 1, 2))
+        deceleration = acceleration if mode != 1 else log_uniform(
+            max(1, math.ceil(drive / (1500 * cycle))), 536_870_911)
+        point = rng.randint(0, steps)
+        lines.append((random_line(rng, steps), (cycle_us, initial, drive, acceleration, deceleration, mode, point)))
+    return lines
+
+
+def random_mcx514_scurve_lines(n: int, seed: int = 16) -> list[tuple[tuple[int, int, int], tuple]]:
+    """The random MCX514 lines with jerks: JK log-uniform above the bound that lets the rate reach
+    AC in 1,500 cycles (or the whole range), DJ = JK for automatic deceleration."""
+    import math
+    import random
+    rng = random.Random(seed)
+    log_uniform = lambda low, high: int(math.exp(rng.uniform(math.log(low), math.log(max(low, high)))))
+    lines = []
+    for finish, registers in random_mcx514_lines(n, seed):
+        cycle_us, initial, drive, acceleration, deceleration, mode, point = registers
+        cycle = cycle_us * 1e-6
+        low = lambda rate: min(1_073_741_823, max(1, math.ceil(rate / (1500 * cycle))))
+        jerk = log_uniform(low(acceleration), 1_073_741_823)
+        deceleration_jerk = jerk if mode == 0 else log_uniform(low(deceleration), 1_073_741_823)
+        lines.append((finish, registers + (jerk, deceleration_jerk)))
+    return lines
+
+
+def random_trapezoid_lines(n: int, seed: int = 15) -> list[tuple[tuple[int, int, int], tuple]]:
+    """Deterministic trapezoid-driven lines: the random trapezoid moves' registers, the distance
+    as the long axis."""
+    import random
+    rng = random.Random(seed)
+    return [(random_line(rng, abs(distance)), (velocity, acceleration, deceleration, start))
+            for distance, velocity, acceleration, deceleration, start in random_trapezoid_moves(n, seed)]
+
+
+def step_line(probe: Probe, profile: str, finish: tuple[int, int, int], registers: tuple,
+              counts: list[int], max_cycles: int = 20_000) -> None:
+    """Sets up and steps one line to its end (and 2 cycles more), each cycle's count to `counts`;
+    checks that it ends on the finish point."""
+    kind = LINE_PROFILES.index(profile)
+    words = [kind, *finish, *registers]
+    words += [0] * (13 - len(words))
+    probe.uc.mem_write(SCRATCH_PAGE, struct.pack("<13I", *(w & 0xFFFF_FFFF for w in words)))
+    if probe.call("probe_line_setup", SCRATCH_PAGE).u64 == REFUSED:
+        raise ProbeFailure(f"line {finish} driven by {profile} {registers} refused")
+    for _ in range(max_cycles):
+        counts.append(probe.call(f"probe_line_step_{profile}").instructions)
+        if probe.call("probe_line_complete", SCRATCH_PAGE + 64).r0:
+            break
+    else:
+        raise ProbeFailure(f"line {finish} driven by {profile} {registers}: not complete in {max_cycles} cycles")
+    counts += [probe.call(f"probe_line_step_{profile}").instructions for _ in range(2)]
+    axes = [a - (1 << 32) if a >= 1 << 31 else a for a in probe.read_words(SCRATCH_PAGE + 64, 3)]
+    if tuple(axes) != finish:
+        raise ProbeFailure(f"line {finish} driven by {profile} {registers} ended at {axes}")
+
+
+def measure_lines(probe: Probe, moves: int) -> dict[str, list[int]]:
+    """Per-cycle counts of a 3-axis line (profile plus geometry), per driving profile."""
+    counts: dict[str, list[int]] = {profile: [] for profile in LINE_PROFILES}
+    for registers in MANUAL_LINE_MCX514:
+        step_line(probe, "mcx514", MANUAL_LINE, registers, counts["mcx514"])
+    step_line(probe, "trapezoid", MANUAL_LINE, MANUAL_LINE_TRAPEZOID, counts["trapezoid"])
+    for finish, registers in random_mcx514_lines(moves):
+        step_line(probe, "mcx514", finish, registers, counts["mcx514"])
+    for finish, registers in random_trapezoid_lines(moves):
+        step_line(probe, "trapezoid", finish, registers, counts["trapezoid"])
+    for registers in MANUAL_LINE_MCX514_SCURVE:
+        step_line(probe, "mcx514_scurve", MANUAL_LINE, registers, counts["mcx514_scurve"])
+    for finish, registers in random_mcx514_scurve_lines(moves):
+        step_line(probe, "mcx514_scurve", finish, registers, counts["mcx514_scurve"])
+    return counts
+
+
 # Verification ------------------------------------------------------------------------------------
 
 
@@ -554,10 +670,22 @@ def main() -> int:
     parser.add_argument("--verify-steps", type=int, default=2000, help="steps checked by --verify (default 2000)")
     parser.add_argument("--trapezoid-moves", type=int, default=200,
                         help="random trapezoid moves stepped to the end (default %(default)s)")
+    parser.add_argument("--line-moves", type=int, default=100,
+                        help="random 3-axis lines stepped to the end, per driving profile (default %(default)s)")
+    parser.add_argument("--line-budget", action="append", default=[], metavar="PROFILE=N",
+                        help="fail when a cycle of a 3-axis line driven by PROFILE (mcx514, trapezoid) "
+                             "executes more than N instructions (profile plus geometry); repeatable")
     parser.add_argument("--functions", type=int, default=8,
                         help="functions listed for the worst plan (default %(default)s)")
     parser.add_argument("--top", type=int, default=5, help="the most expensive plans listed (default 5)")
     args = parser.parse_args()
+
+    line_budgets: dict[str, int] = {}
+    for budget in args.line_budget:
+        name, _, value = budget.partition("=")
+        if name not in LINE_PROFILES or not value.isdigit():
+            parser.error(f"--line-budget {budget!r}: expected PROFILE=N with PROFILE one of {', '.join(LINE_PROFILES)}")
+        line_budgets[name] = int(value)
 
     if not os.path.exists(args.elf):
         print(f"error: no probe image at {args.elf}: build it first "
@@ -626,6 +754,14 @@ def main() -> int:
                   f"({len(counts_)} cycles)")
         print(f"  {'Trapezoid set-up (plans)':26} max {max(setups):4}, mean {statistics.fmean(setups):6.1f} "
               f"instructions ({len(setups)} moves; reported, not budgeted here)")
+        print(f"== a 3-axis linear interpolation, one call per cycle (LinearInterpolation::step: the "
+              f"profile plus the geometry; the manual's line and {args.line_moves} random lines per profile)")
+        lines_started = time.monotonic()
+        lines = measure_lines(probe, args.line_moves)
+        for name, counts_ in lines.items():
+            print(f"  {'3-axis line, ' + name:26} max {max(counts_):4}, mean {statistics.fmean(counts_):6.1f} "
+                  f"instructions ({len(counts_)} cycles)")
+        print(f"  ({time.monotonic() - lines_started:.1f} s)")
     except ProbeFailure as failure:
         print(f"error: the probe failed: {failure}", file=sys.stderr)
         return 2
@@ -648,7 +784,11 @@ def main() -> int:
     stepping_ok = within("one step of SCurve", all_steps, args.step_budget, "", "cycles")
     for name, counts_ in others.items():
         stepping_ok &= within(f"one step of {name}", counts_, args.step_budget, "", "cycles")
-    status = 0 if planning_ok and stepping_ok else 1
+    lines_ok = True
+    for name, counts_ in lines.items():
+        lines_ok &= within(f"one cycle of a 3-axis line driven by {name}", counts_, line_budgets.get(name), "",
+                           "cycles")
+    status = 0 if planning_ok and stepping_ok and lines_ok else 1
     return status
 
 

@@ -48,10 +48,26 @@ struct PerCycle {
     drive: i64,
     acceleration: i64,
     deceleration: i64,
-    /// The manual deceleration point, raw I32F32 pulses (`None` unless manual).
-    manual_point: Option<i64>,
+    /// The manual deceleration point, raw I32F32 whole pulses, held below 2³¹ pulses (every
+    /// point from 2³⁰ on is past every finish point, so never reached); `i64::MAX` unless manual.
+    manual_point: i64,
     automatic: bool,
     disabled: bool,
+    /// max(DC, SV): a larger drop in one cycle is exempt (a late finish, an abrupt stop).
+    largest_drop: i64,
+}
+
+/// Where the move is; each phase has its own one-comparison test for what ends it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Phase {
+    /// At rest before the first cycle.
+    Start,
+    /// Speeding up by AC toward DV.
+    Accelerating,
+    /// At DV (deceleration disabled: from the first cycle).
+    Cruising,
+    /// Slowing down by DC to SV, then creeping at SV.
+    Decelerating,
 }
 
 /// The MCX514's trapezoidal acceleration/deceleration on the driving axis (SPEC §12.2), cycle by
@@ -74,7 +90,7 @@ struct PerCycle {
 /// Every cycle's velocity is at most the pulses left, so the move lands exactly on the finish
 /// point; the cycle after, the velocity drops to zero. A smooth stop decelerates by DC to SV and
 /// stops from there (the chip's decelerating stop); an abrupt stop drops to zero on the next
-/// cycle. S-curve driving is not modelled yet.
+/// cycle. The S-curve is [`Mcx514SCurve`](crate::Mcx514SCurve).
 ///
 /// ```
 /// use profilegen::format::mcx514::{Acceleration, Deceleration, DriveSpeed, InitialSpeed};
@@ -101,18 +117,18 @@ struct PerCycle {
 pub struct Mcx514Trapezoidal {
     profile: PerCycle,
     state: State,
-    /// Raw I32F32 pulses output up to the end of the last cycle that sped up.
-    accelerated: i64,
-    /// Deceleration has started (it never stops once started).
-    decelerating: bool,
+    phase: Phase,
+    /// The position (raw I32F32) at or past which a cycle that begins there starts to
+    /// decelerate: the manual point; with automatic deceleration, while speeding up, half the
+    /// finish point (rounded up: the pulses left, finish − p, are then ≤ the pulses output while
+    /// speeding up, p), and once at DV, the finish point less those pulses. `i64::MAX`: never.
+    trigger: i64,
     /// A smooth stop was commanded: decelerate to SV, then stop.
     stopping: bool,
     complete: bool,
-    /// The last cycle dropped by more than the rate limits allow (a late finish or abrupt stop).
-    exempt: bool,
-    /// The last cycle's velocity was cut to the pulses left, or was the stop to zero: the ends of
-    /// the move, where the drop may be up to SV (or, above that, exempt).
-    cut: bool,
+    /// The velocity the last cycle wanted (raw I32F32) before the cut to the pulses left: what
+    /// [`limits`](ProfileGenerator::limits) tells the ends of the move by, off the per-cycle path.
+    wanted: i64,
 }
 
 impl Mcx514Trapezoidal {
@@ -154,89 +170,131 @@ impl Mcx514Trapezoidal {
             });
         }
         let manual_point = match parameters.deceleration_mode {
-            DecelerationMode::Manual(point) => Some(i64::from(point.to_bits()) << 32),
-            _ => None,
+            // Past 2³¹ − 1 pulses the shift would leave i64; such a point is never reached.
+            DecelerationMode::Manual(point) => {
+                i64::from(point.to_bits().min(i32::MAX as u32)) << 32
+            }
+            _ => i64::MAX,
         };
+        let finish = i64::from(finish.to_bits()) << 32;
+        // Converted in the registers' order, so the first bad one is the one reported.
+        let initial = initial.per_cycle(cycle)?.to_bits();
+        let drive = drive.per_cycle(cycle)?.to_bits();
+        let acceleration = parameters.acceleration.per_cycle(cycle)?.to_bits();
+        let deceleration = parameters.deceleration.per_cycle(cycle)?.to_bits();
         let profile = PerCycle {
-            finish: i64::from(finish.to_bits()) << 32,
-            initial: initial.per_cycle(cycle)?.to_bits(),
-            drive: drive.per_cycle(cycle)?.to_bits(),
-            acceleration: parameters.acceleration.per_cycle(cycle)?.to_bits(),
-            deceleration: parameters.deceleration.per_cycle(cycle)?.to_bits(),
+            finish,
+            initial,
+            drive,
+            acceleration,
+            deceleration,
             manual_point,
             automatic,
             disabled: parameters.deceleration_mode == DecelerationMode::Disabled,
+            largest_drop: deceleration.max(initial),
         };
         Ok(Self {
             profile,
             state: State::default(),
-            accelerated: 0,
-            decelerating: false,
+            phase: Phase::Start,
+            // While speeding up (automatic): 2p ≥ finish, i.e. p ≥ ⌈finish/2⌉.
+            trigger: if automatic {
+                (finish + 1) >> 1
+            } else {
+                manual_point
+            },
             stopping: false,
-            complete: profile.finish == 0,
-            exempt: false,
-            cut: false,
+            complete: finish == 0,
+            wanted: 0,
         })
     }
 
-    /// The velocity of the next cycle, before the cut to the pulses left (raw I32F32).
-    fn next_velocity(&mut self) -> i64 {
-        let p = &self.profile;
-        let (position, velocity) = (self.state.position.to_bits(), self.state.velocity.to_bits());
-        if p.disabled && !self.stopping {
+    /// The velocity of the next cycle, before the cut to the pulses left (raw I32F32), with the
+    /// phase it leaves the move in. The rules (SPEC §12.2): SV at once; up by AC to DV; down by
+    /// DC to SV from the cycle that begins at or past the trigger; a smooth stop decelerates at
+    /// once and stops from SV.
+    #[inline]
+    fn next_velocity(&mut self, position: i64, velocity: i64) -> i64 {
+        if self.phase != Phase::Decelerating && position >= self.trigger {
+            self.phase = Phase::Decelerating;
+        }
+        match self.phase {
+            Phase::Cruising => velocity,
+            Phase::Accelerating => {
+                // Saturating: at a cycle of seconds AC alone is near 2³¹ pulses/cycle², and with
+                // the velocity it can pass i64 in raw bits; DV caps the sum anyway.
+                let next = velocity.saturating_add(self.profile.acceleration);
+                let drive = self.profile.drive;
+                if next < drive {
+                    return next;
+                }
+                self.cruise(position + drive);
+                drive
+            }
+            Phase::Decelerating => {
+                let initial = self.profile.initial;
+                if self.stopping && velocity <= initial {
+                    // A smooth stop ends at SV, as the chip's decelerating stop does.
+                    self.complete = true;
+                    return 0;
+                }
+                // Down by DC, never below SV (the creep). No overflow: 0 ≤ velocity and
+                // DC < 2⁶³ in raw bits.
+                (velocity - self.profile.deceleration).max(initial)
+            }
+            Phase::Start => self.start(),
+        }
+    }
+
+    /// The first cycle: SV at once (DV with deceleration disabled).
+    #[cold]
+    fn start(&mut self) -> i64 {
+        let p = self.profile;
+        if p.disabled {
+            self.phase = Phase::Cruising;
+            self.trigger = i64::MAX;
             return p.drive;
         }
-        if !self.decelerating {
-            let left = p.finish - position;
-            self.decelerating = self.stopping
-                || (p.automatic && velocity != 0 && left <= self.accelerated)
-                // The output count is the position's integer part: compare whole pulses.
-                || p.manual_point.is_some_and(|point| position >> 32 << 32 >= point);
-        }
-        if self.decelerating {
-            if self.stopping && velocity <= p.initial {
-                return 0; // a smooth stop ends at SV, as the chip's decelerating stop does
-            }
-            // Down by DC, never below SV (the creep). No overflow: 0 ≤ velocity and
-            // DC < 2⁶³ in raw bits.
-            return (velocity - p.deceleration).max(p.initial);
-        }
-        if velocity == 0 {
-            p.initial // the start: SV at once
+        if p.initial < p.drive {
+            self.phase = Phase::Accelerating;
         } else {
-            // Saturating: at a cycle of seconds AC alone is near 2³¹ pulses/cycle², and with the
-            // velocity it can pass i64 in raw bits; DV caps the sum anyway.
-            velocity.saturating_add(p.acceleration).min(p.drive)
+            self.cruise(p.initial);
+        }
+        p.initial
+    }
+
+    /// At DV after a cycle that sped up to `reached` (raw I32F32 pulses): with automatic
+    /// deceleration, the trigger becomes the finish point less the pulses output while speeding
+    /// up.
+    #[cold]
+    fn cruise(&mut self, reached: i64) {
+        self.phase = Phase::Cruising;
+        if self.profile.automatic {
+            self.trigger = self.profile.finish - reached;
         }
     }
 }
 
 impl ProfileGenerator for Mcx514Trapezoidal {
     fn step(&mut self) -> State {
-        let before = self.state.velocity.to_bits();
+        let (position, before) = (self.state.position.to_bits(), self.state.velocity.to_bits());
         let velocity = if self.complete {
+            self.wanted = 0;
             0
         } else {
-            let left = self.profile.finish - self.state.position.to_bits();
-            // At most the pulses left: the move lands exactly on the finish point. i64: both
-            // below 2³¹ pulses in raw I32F32.
-            let wanted = self.next_velocity();
-            let velocity = wanted.min(left);
-            self.cut = velocity < wanted;
-            if velocity > before && !self.decelerating {
-                self.accelerated = self.state.position.to_bits() + velocity;
+            let wanted = self.next_velocity(position, before);
+            self.wanted = wanted;
+            // At most the pulses left: the move lands exactly on the finish point, complete
+            // there (the next cycle drops to zero). i64: both below 2³¹ pulses in raw I32F32.
+            let left = self.profile.finish - position;
+            if wanted >= left {
+                self.complete = true;
+                left
+            } else {
+                wanted
             }
-            velocity
         };
-        self.cut |= velocity == 0;
-        // A drop beyond both DC and SV only happens at a late finish or after an abrupt stop.
-        self.exempt = before - velocity > self.profile.deceleration.max(self.profile.initial);
-        let state = advance(&mut self.state, I32F32::from_bits(velocity));
-        if velocity == 0 || state.position.to_bits() == self.profile.finish {
-            // Complete at rest; on the finish point the next cycle drops to zero.
-            self.complete = true;
-        }
-        state
+        advance(&mut self.state, I32F32::from_bits(velocity))
     }
 
     fn state(&self) -> State {
@@ -249,14 +307,23 @@ impl ProfileGenerator for Mcx514Trapezoidal {
 
     fn stop(&mut self, kind: StopKind) {
         match kind {
-            StopKind::Smooth => self.stopping = true,
+            StopKind::Smooth => {
+                self.stopping = true;
+                self.phase = Phase::Decelerating;
+            }
             StopKind::Abrupt => self.complete = true,
         }
     }
 
     fn limits(&self) -> Limits {
         let p = &self.profile;
-        let before = self.state.velocity.to_bits() - self.state.acceleration.to_bits();
+        let (velocity, acceleration) = (
+            self.state.velocity.to_bits(),
+            self.state.acceleration.to_bits(),
+        );
+        let before = velocity - acceleration;
+        // The ends of the move: the cycle cut to the pulses left, and the stop to zero.
+        let cut = velocity < self.wanted || velocity == 0;
         // From rest the first cycle jumps to SV (to DV with deceleration disabled).
         let speed_up = if before == 0 {
             if p.disabled {
@@ -271,14 +338,15 @@ impl ProfileGenerator for Mcx514Trapezoidal {
             max_velocity: Some(I32F32::from_bits(p.drive)),
             max_speed_up: Some(I32F32::from_bits(speed_up)),
             // DC on the ramp; at the ends (the cut to the pulses left, the stop) up to SV.
-            max_slow_down: Some(I32F32::from_bits(if self.cut {
+            max_slow_down: Some(I32F32::from_bits(if cut {
                 p.deceleration.max(p.initial)
             } else {
                 p.deceleration
             })),
             max_acceleration: None,
             max_jerk: None,
-            exempt: self.exempt,
+            // A drop beyond both DC and SV only happens at a late finish or an abrupt stop.
+            exempt: -acceleration > p.largest_drop,
         }
     }
 }
