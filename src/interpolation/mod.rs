@@ -3,8 +3,12 @@
 //! between two evaluations. A speed profile decides how many steps a cycle takes; a geometry
 //! decides where those steps put the axes.
 
+pub mod circular;
 mod drive;
 pub mod linear;
 
+pub use circular::{
+    Arc, ArcWalk, CircleState, CircularDriving, CircularInterpolation, Direction, Octant,
+};
 pub use drive::{InterpolationState, LinearInterpolation};
 pub use linear::{Line, Walk};

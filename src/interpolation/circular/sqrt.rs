@@ -1,0 +1,117 @@
+//! The exact integer square root the circle needs once per cycle, in 32-bit operations only.
+//!
+//! `u64::isqrt` of `core` finishes with a 64-bit division, which a 32-bit Cortex-M4 has no
+//! instruction for (a library call of a hundred-odd instructions). Here the input is below 2⁶²
+//! (a radius² is below 2⁶¹), so one Karatsuba step (Zimmermann, "Karatsuba Square Root", 1999)
+//! in base b = 2¹⁵ keeps every quantity of the last stage inside 32 bits:
+//!
+//! ```text
+//! n normalized by an even shift into [2⁶⁰, 2⁶²):  n = h·b² + a₁·b + a₀,  h = ⌊n / 2³⁰⌋ ∈ [2³⁰, 2³²)
+//! s₁ = ⌊√h⌋ ∈ [2¹⁵, 2¹⁶),  r₁ = h − s₁² ≤ 2·s₁ < 2¹⁷
+//! (q, u) = divmod(r₁·b + a₁, 2·s₁)     r₁·b + a₁ < 2¹⁷·2¹⁵ = 2³²; q ≤ b
+//! s = s₁·b + q,  r = u·b + a₀ − q²;    if r < 0 { s −= 1 }   (at most once: h ≥ b²/4)
+//! ```
+//!
+//! and `u·b + a₀ < 2³²`, `q² ≤ 2³⁰`, so the sign test is a 32-bit comparison too. Undoing the
+//! normalization (a shift of the root by half the shift) keeps the floor: ⌊⌊2ʲ·x⌋ / 2ʲ⌋ = ⌊x⌋.
+
+/// ⌊√n⌋ for n < 2⁶², exactly; see the [module docs](self).
+#[inline]
+pub(crate) fn isqrt(n: u64) -> u32 {
+    debug_assert!(n < 1 << 62, "isqrt: the input must be below 2^62");
+    if n == 0 {
+        return 0;
+    }
+    // An even shift that puts the leading one at bit 60 or 61 (n < 2⁶² has ≥ 2 leading zeros).
+    let shift = (n.leading_zeros() - 2) & !1;
+    let n = n << shift;
+    // h ∈ [2³⁰, 2³²): the cast keeps every bit.
+    let high = (n >> 30) as u32;
+    let low = (n as u32) & ((1 << 30) - 1);
+    let (digit_1, digit_0) = (low >> 15, low & 0x7fff);
+    let root_high = high.isqrt();
+    // r₁ ≤ 2·s₁ < 2¹⁷, so r₁·2¹⁵ + a₁ < 2³²: one 32-bit division.
+    let remainder_high = high - root_high * root_high;
+    let numerator = (remainder_high << 15) | digit_1;
+    let divisor = root_high << 1;
+    let quotient = numerator / divisor;
+    let rest = numerator - quotient * divisor;
+    // s < 2¹⁶·2¹⁵ + 2¹⁵ < 2³²; the remainder u·b + a₀ < 2³², and q ≤ 2¹⁵, so q² ≤ 2³⁰.
+    let root = (root_high << 15) + quotient;
+    let root = if (rest << 15) + digit_0 < quotient * quotient {
+        root - 1
+    } else {
+        root
+    };
+    root >> (shift / 2)
+}
+
+/// √n rounded to the nearest integer (there are no ties: (q + ½)² is never an integer), for
+/// n < 2⁶²: ⌊√n⌋ plus one when n − q² > q, i.e. n ≥ q² + q + ¼.
+#[inline]
+pub(crate) fn round_sqrt(n: u64) -> u32 {
+    let root = isqrt(n);
+    // q² ≤ n < 2⁶², and n − q² ≤ 2q < 2³²: u64 throughout.
+    let excess = n - u64::from(root) * u64::from(root);
+    root + u32::from(excess > u64::from(root))
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::{isqrt, round_sqrt};
+
+    /// The definition, checked in u128: q² ≤ n < (q + 1)².
+    fn is_floor_root(n: u64, root: u32) -> bool {
+        let (n, q) = (u128::from(n), u128::from(root));
+        q * q <= n && n < (q + 1) * (q + 1)
+    }
+
+    #[test]
+    fn exact_near_every_square_and_at_the_ends() {
+        let mut cases = std::vec![0u64, 1, 2, 3, 4, (1 << 62) - 1, 1 << 60, (1 << 60) - 1];
+        // Around q² for q spread over the whole range (q < 2³¹): q² − 1, q², q² + q, q² + q + 1, …
+        let mut q: u64 = 1;
+        while q < 1 << 31 {
+            for root in [q, q + 1, (1 << 31) - q] {
+                let square = root * root;
+                for n in [
+                    square - 1,
+                    square,
+                    square + 1,
+                    square + root,
+                    square + root + 1,
+                ] {
+                    if n < 1 << 62 {
+                        cases.push(n);
+                    }
+                }
+            }
+            q = q * 3 / 2 + 1;
+        }
+        for n in cases {
+            assert!(is_floor_root(n, isqrt(n)), "isqrt({n}) = {}", isqrt(n));
+        }
+    }
+
+    #[test]
+    fn exact_on_pseudo_random_inputs_of_every_size() {
+        // A fixed xorshift sequence, every bit length from 1 to 62.
+        let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
+        for _ in 0..200_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let n = state >> (2 + state % 62);
+            assert!(is_floor_root(n, isqrt(n)), "isqrt({n}) = {}", isqrt(n));
+            let nearest = round_sqrt(n);
+            // |nearest − √n| < ½  ⇔  (2q − 1)² < 4n < (2q + 1)², in u128.
+            let (four_n, twice) = (4 * u128::from(n), 2 * u128::from(nearest));
+            assert!(
+                (twice.saturating_sub(1)).pow(2) < four_n || n == 0,
+                "round_sqrt({n})"
+            );
+            assert!(four_n < (twice + 1).pow(2), "round_sqrt({n}) = {nearest}");
+        }
+    }
+}
