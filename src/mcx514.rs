@@ -179,6 +179,23 @@ impl Mcx514Trapezoidal {
         })
     }
 
+    /// Continuous interpolation (SPEC §12.5): moves the finish point to `pulses` (≥ the pulses
+    /// output so far) and the manual deceleration point to `manual_point` (`None`: none yet, so
+    /// no deceleration until one is given), while the move runs. Returns `false`, changing
+    /// nothing, once the move has ended (it reached its finish point or was stopped after it
+    /// started); a move that has not started yet may be given its first finish point.
+    pub(crate) fn continue_to(&mut self, pulses: u32, manual_point: Option<u32>) -> bool {
+        let finish = i64::from(pulses) << 32;
+        let moved = self.state.position.to_bits() != 0 || self.state.velocity != I32F32::ZERO;
+        if (self.complete && moved) || self.stopping || finish < self.state.position.to_bits() {
+            return false;
+        }
+        self.profile.finish = finish;
+        self.profile.manual_point = manual_point.map(|point| i64::from(point) << 32);
+        self.complete = finish == self.state.position.to_bits();
+        true
+    }
+
     /// The velocity of the next cycle, before the cut to the pulses left (raw I32F32).
     fn next_velocity(&mut self) -> i64 {
         let p = &self.profile;

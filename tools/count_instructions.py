@@ -487,6 +487,67 @@ def measure_other_generators(probe: Probe, moves: int) -> tuple[dict[str, list[i
     return steps, setups
 
 
+# The manual's circle (reference 003): r = 10,000 full turn, SV 500, DV 20,000 pps, AC = DC
+# 65,000 pps/s, DP 53,493, at a 1 ms cycle. Words as `probe_circle_setup` takes them.
+MANUAL_CIRCLE = (10_000, 0, 0, 0, 1, 500, 20_000, 65_000, 65_000, 53_493, 1_000)
+
+
+def random_circles(n: int, seed: int = 15) -> list[tuple[int, ...]]:
+    """Deterministic MCX514 circles of about 1,000 cycles each: a radius log-uniform in 1 .. 2^27
+    at a random angle (the start exactly on the circle: the centre is rounded, the radius follows),
+    a full, half or quarter turn in either direction (the opposite and the quarter-turn points of
+    an exact start are exact too), the cycle time and DV chosen so that about a thousand steps'
+    worth of cycles covers the arc, SV a tenth of DV, AC = DC for a 100-cycle ramp, and the
+    manual deceleration point the continuous-time ramp's pulses before the end."""
+    import math
+    import random
+    rng = random.Random(seed)
+    circles = []
+    while len(circles) < n:
+        radius = math.exp(rng.uniform(0, math.log(2**27)))
+        angle = rng.uniform(0, 2 * math.pi)
+        cx, cy = -round(radius * math.cos(angle)), -round(radius * math.sin(angle))
+        if (cx, cy) == (0, 0):
+            continue
+        turn = rng.choice(("full", "half", "quarter"))
+        # The start relative to the centre is (-cx, -cy); finishes relative to the start.
+        finish = {"full": (0, 0), "half": (2 * cx, 2 * cy), "quarter": (cx + cy, cy - cx)}[turn]
+        ccw = rng.randrange(2)
+        if turn == "quarter" and not ccw:
+            finish = (cx - cy, cy + cx)
+        steps = 6 * math.hypot(cx, cy) * {"full": 1.0, "half": 0.5, "quarter": 0.25}[turn] + 1
+        cycle_us = max(1_000, math.ceil(steps / 4_000_000 * 1e6 / 1_000))
+        cycle = cycle_us * 1e-6
+        drive = max(10, min(8_000_000, round(steps / 1_000 / cycle)))
+        initial = max(1, drive // 10)
+        acceleration = max(1, min(2**29 - 1, round((drive - initial) / (100 * cycle))))
+        ramp = math.ceil((drive * drive - initial * initial) / (2 * acceleration))
+        point = max(0, int(steps) - ramp)
+        circles.append((cx, cy, *finish, ccw, initial, drive, acceleration, acceleration, point, cycle_us))
+    return circles
+
+
+def measure_circles(probe: Probe, moves: int) -> list[int]:
+    """Per-cycle counts of the circular interpolation (profile plus arc), the manual's circle and
+    `moves` random ones, each to its end."""
+    counts = []
+    for circle in [MANUAL_CIRCLE] + random_circles(moves):
+        probe.uc.mem_write(SCRATCH_PAGE, struct.pack("<11I", *(w & 0xFFFF_FFFF for w in circle)))
+        if probe.call("probe_circle_setup", SCRATCH_PAGE).r0:
+            raise ProbeFailure(f"circle refused: {circle}")
+        for _ in range(50_000):
+            counts.append(probe.call("probe_circle_step").instructions)
+            if probe.call("probe_circle_complete").r0:
+                break
+        else:
+            raise ProbeFailure(f"circle {circle} did not end in 50,000 cycles")
+        end = probe.call("probe_circle_step").u64
+        counts.append(probe.call("probe_circle_step").instructions)
+        if circle[2:4] == (0, 0) and end != 0:
+            raise ProbeFailure(f"full circle {circle} ended at {end:#x}, not at its start")
+    return counts
+
+
 # Verification ------------------------------------------------------------------------------------
 
 
@@ -554,6 +615,10 @@ def main() -> int:
     parser.add_argument("--verify-steps", type=int, default=2000, help="steps checked by --verify (default 2000)")
     parser.add_argument("--trapezoid-moves", type=int, default=200,
                         help="random trapezoid moves stepped to the end (default %(default)s)")
+    parser.add_argument("--circle-moves", type=int, default=20,
+                        help="random MCX514 circles stepped to the end, besides the manual's (default %(default)s)")
+    parser.add_argument("--circle-budget", type=int,
+                        help="fail when a cycle of a circular interpolation executes more instructions")
     parser.add_argument("--functions", type=int, default=8,
                         help="functions listed for the worst plan (default %(default)s)")
     parser.add_argument("--top", type=int, default=5, help="the most expensive plans listed (default 5)")
@@ -626,6 +691,11 @@ def main() -> int:
                   f"({len(counts_)} cycles)")
         print(f"  {'Trapezoid set-up (plans)':26} max {max(setups):4}, mean {statistics.fmean(setups):6.1f} "
               f"instructions ({len(setups)} moves; reported, not budgeted here)")
+        print(f"== MCX514 circular interpolation, one call per cycle (profile and arc; the manual's "
+              f"circle and {args.circle_moves} random ones, each to its end)")
+        circle_counts = measure_circles(probe, args.circle_moves)
+        print(f"  {'circle (Mcx514Trapezoidal + Arc)':26} max {max(circle_counts):4}, mean "
+              f"{statistics.fmean(circle_counts):6.1f} instructions ({len(circle_counts)} cycles)")
     except ProbeFailure as failure:
         print(f"error: the probe failed: {failure}", file=sys.stderr)
         return 2
@@ -648,6 +718,7 @@ def main() -> int:
     stepping_ok = within("one step of SCurve", all_steps, args.step_budget, "", "cycles")
     for name, counts_ in others.items():
         stepping_ok &= within(f"one step of {name}", counts_, args.step_budget, "", "cycles")
+    stepping_ok &= within("one cycle of a circular interpolation", circle_counts, args.circle_budget, "", "cycles")
     status = 0 if planning_ok and stepping_ok else 1
     return status
 

@@ -18,6 +18,10 @@
 //!   the same for `Trapezoidal`; the setup is the measured "starting a move" (it plans).
 //! - `probe_trapezoid_command(command, value)`: a stop or a new destination in motion, so the
 //!   cycles that follow can be counted too.
+//! - `probe_circle_setup(words)` (centre x, y, finish x, y, 1 for counter-clockwise, SV, DV, AC,
+//!   DC (MCX514 registers), the manual deceleration point, the cycle time in µs),
+//!   `probe_circle_step()`, `probe_circle_complete()`: an MCX514 circular interpolation, the
+//!   arc driven by `Mcx514Trapezoidal`; a step is the profile's cycle plus the arc's O(1) jump.
 //! - `probe_selftest_panic(1)`, `probe_selftest_runaway()`: a panic and an endless loop, so the
 //!   harness can check that it catches both.
 #![no_std]
@@ -31,8 +35,10 @@ use core::sync::atomic::{AtomicU32, Ordering};
 
 use profilegen::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
 use profilegen::format::juno::{Acceleration, TargetVelocity};
+use profilegen::format::{mcx514, CycleTime};
+use profilegen::interpolation::{Arc, ArcWalk, CircularDriving, Direction};
 use profilegen::{
-    Error, ProfileGenerator, SCurve, ScurveParameters, Trapezoidal, TrapezoidalParameters,
+    DecelerationMode, Error, Mcx514Trapezoidal, ProfileGenerator, SCurve, ScurveParameters, Trapezoidal, TrapezoidalParameters,
     VelocityContouring, VelocityParameters,
 };
 
@@ -272,6 +278,91 @@ pub unsafe extern "C" fn probe_trapezoid_command(command: u32, value: i32) {
             let _ = TargetVelocity::from_bits(value).and_then(|v| axis.set_max_velocity(v));
         }
     }
+}
+
+/// A circular interpolation: the driving profile and the walk along the arc.
+struct Circle {
+    profile: Mcx514Trapezoidal,
+    walk: ArcWalk,
+}
+
+static CIRCLE: Other<Circle> = Other(UnsafeCell::new(MaybeUninit::uninit()));
+
+/// Sets up the stepped circle from `words[0..11]` (see the crate docs); 0 on success, 1 when
+/// refused.
+///
+/// # Safety
+/// `words` points to 11 readable, aligned words.
+#[no_mangle]
+pub unsafe extern "C" fn probe_circle_setup(words: *const u32) -> u32 {
+    // SAFETY: the caller provides 11 words.
+    let word = |i: usize| unsafe { words.add(i).read() };
+    let circle = || -> Result<Circle, Error> {
+        let direction = if word(4) == 1 {
+            Direction::CounterClockwise
+        } else {
+            Direction::Clockwise
+        };
+        let arc = Arc::from_pulses(
+            [word(0) as i32, word(1) as i32],
+            [word(2) as i32, word(3) as i32],
+            direction,
+        )?;
+        let cycle = CycleTime::from_seconds(f64::from(word(10)) * 1e-6)?;
+        let profile = arc.mcx514_profile(
+            CircularDriving {
+                initial_speed: mcx514::InitialSpeed::from_bits(word(5))?,
+                drive_speed: mcx514::DriveSpeed::from_bits(word(6))?,
+                acceleration: mcx514::Acceleration::from_bits(word(7))?,
+                deceleration: mcx514::Deceleration::from_bits(word(8))?,
+                jerk: None,
+                deceleration_jerk: None,
+                deceleration_mode: DecelerationMode::Manual(
+                    mcx514::ManualDecelerationPoint::from_bits(word(9))?,
+                ),
+            },
+            cycle,
+        )?;
+        Ok(Circle {
+            profile,
+            walk: arc.walk(),
+        })
+    };
+    match circle() {
+        Ok(circle) => {
+            // SAFETY: single-threaded; no reference to the slot outlives a call.
+            unsafe { (*CIRCLE.0.get()).write(circle) };
+            0
+        }
+        Err(_) => 1,
+    }
+}
+
+/// Advances the stepped circle one cycle: the profile's step and the arc's jump to the step it
+/// reached (what `CircularInterpolation::step` does); returns both axes (x in the low word).
+///
+/// # Safety
+/// `probe_circle_setup` succeeded before.
+#[no_mangle]
+pub unsafe extern "C" fn probe_circle_step() -> i64 {
+    // SAFETY: initialized by probe_circle_setup (the caller's contract); single-threaded.
+    let circle = unsafe { (*CIRCLE.0.get()).assume_init_mut() };
+    let driving = circle.profile.step();
+    // The whole steps: the position's integer part, never negative for this profile.
+    let steps = (driving.position.to_bits() >> 32).max(0) as u64;
+    let [x, y] = circle.walk.advance_to(steps);
+    i64::from(x as u32) | (i64::from(y) << 32)
+}
+
+/// 1 when the stepped circle's profile is complete, else 0.
+///
+/// # Safety
+/// `probe_circle_setup` succeeded before.
+#[no_mangle]
+pub unsafe extern "C" fn probe_circle_complete() -> u32 {
+    // SAFETY: initialized by probe_circle_setup (the caller's contract); single-threaded.
+    let circle = unsafe { (*CIRCLE.0.get()).assume_init_ref() };
+    u32::from(circle.profile.is_complete())
 }
 
 /// Panics when `panic` is non-zero: the harness's check that a panic is caught and located.

@@ -4,11 +4,13 @@
 //! decides where those steps put the axes.
 
 pub mod circular;
+pub mod continuous;
 mod drive;
 pub mod linear;
 
 pub use circular::{
     Arc, ArcWalk, CircleState, CircularDriving, CircularInterpolation, Direction, Octant,
 };
+pub use continuous::{ContinuousDriving, ContinuousInterpolation, ContinuousState, Segment};
 pub use drive::{InterpolationState, LinearInterpolation};
 pub use linear::{Line, Walk};
