@@ -3,11 +3,13 @@
 //! between two evaluations. A speed profile decides how many steps a cycle takes; a geometry
 //! decides where those steps put the axes.
 
+pub mod bit_pattern;
 pub mod circular;
 pub mod continuous;
 mod drive;
 pub mod linear;
 
+pub use bit_pattern::{BitPatternInterpolation, BitPatternState, BitWord};
 pub use circular::{
     Arc, ArcWalk, CircleState, CircularDriving, CircularInterpolation, Direction, Octant,
 };
