@@ -48,8 +48,12 @@ struct PerCycle {
     drive: i64,
     acceleration: i64,
     deceleration: i64,
-    /// The manual deceleration point, raw I32F32 pulses (`None` unless manual).
-    manual_point: Option<i64>,
+    /// The manual deceleration point, raw I32F32 pulses (`i64::MAX`, never reached, unless
+    /// manual).
+    trigger: i64,
+    /// DV − AC, raw: a velocity at or above it reaches DV on the next speed-up (the sum itself
+    /// could pass i64 at a cycle of seconds).
+    drive_less_acceleration: i64,
     automatic: bool,
     disabled: bool,
 }
@@ -108,8 +112,6 @@ pub struct Mcx514Trapezoidal {
     /// A smooth stop was commanded: decelerate to SV, then stop.
     stopping: bool,
     complete: bool,
-    /// The last cycle dropped by more than the rate limits allow (a late finish or abrupt stop).
-    exempt: bool,
     /// The last cycle's velocity was cut to the pulses left, or was the stop to zero: the ends of
     /// the move, where the drop may be up to SV (or, above that, exempt).
     cut: bool,
@@ -153,9 +155,9 @@ impl Mcx514Trapezoidal {
                          needs a manual deceleration point for that)",
             });
         }
-        let manual_point = match parameters.deceleration_mode {
-            DecelerationMode::Manual(point) => Some(i64::from(point.to_bits()) << 32),
-            _ => None,
+        let trigger = match parameters.deceleration_mode {
+            DecelerationMode::Manual(point) => i64::from(point.to_bits()) << 32,
+            _ => i64::MAX,
         };
         let profile = PerCycle {
             finish: i64::from(finish.to_bits()) << 32,
@@ -163,9 +165,15 @@ impl Mcx514Trapezoidal {
             drive: drive.per_cycle(cycle)?.to_bits(),
             acceleration: parameters.acceleration.per_cycle(cycle)?.to_bits(),
             deceleration: parameters.deceleration.per_cycle(cycle)?.to_bits(),
-            manual_point,
+            trigger,
+            drive_less_acceleration: 0,
             automatic,
             disabled: parameters.deceleration_mode == DecelerationMode::Disabled,
+        };
+        let profile = PerCycle {
+            // Both in 0 … 2⁶³ − 1024: the difference cannot overflow.
+            drive_less_acceleration: profile.drive - profile.acceleration,
+            ..profile
         };
         Ok(Self {
             profile,
@@ -174,7 +182,6 @@ impl Mcx514Trapezoidal {
             decelerating: false,
             stopping: false,
             complete: profile.finish == 0,
-            exempt: false,
             cut: false,
         })
     }
@@ -191,39 +198,41 @@ impl Mcx514Trapezoidal {
             return false;
         }
         self.profile.finish = finish;
-        self.profile.manual_point = manual_point.map(|point| i64::from(point) << 32);
+        self.profile.trigger = manual_point.map_or(i64::MAX, |point| i64::from(point) << 32);
         self.complete = finish == self.state.position.to_bits();
         true
     }
 
-    /// The velocity of the next cycle, before the cut to the pulses left (raw I32F32).
-    fn next_velocity(&mut self) -> i64 {
+    /// The velocity of the next cycle, before the cut to the pulses left (raw I32F32), from the
+    /// velocity `before` at `position` with `left` pulses to the finish point.
+    #[inline(always)]
+    fn next_velocity(&mut self, position: i64, before: i64, left: i64) -> i64 {
         let p = &self.profile;
-        let (position, velocity) = (self.state.position.to_bits(), self.state.velocity.to_bits());
         if p.disabled && !self.stopping {
             return p.drive;
         }
         if !self.decelerating {
-            let left = p.finish - position;
             self.decelerating = self.stopping
-                || (p.automatic && velocity != 0 && left <= self.accelerated)
                 // The output count is the position's integer part: compare whole pulses.
-                || p.manual_point.is_some_and(|point| position >> 32 << 32 >= point);
+                || position >> 32 << 32 >= p.trigger
+                || (p.automatic && before != 0 && left <= self.accelerated);
         }
         if self.decelerating {
-            if self.stopping && velocity <= p.initial {
+            if self.stopping && before <= p.initial {
                 return 0; // a smooth stop ends at SV, as the chip's decelerating stop does
             }
             // Down by DC, never below SV (the creep). No overflow: 0 ≤ velocity and
             // DC < 2⁶³ in raw bits.
-            return (velocity - p.deceleration).max(p.initial);
+            return (before - p.deceleration).max(p.initial);
         }
-        if velocity == 0 {
+        if before == 0 {
             p.initial // the start: SV at once
+        } else if before >= p.drive_less_acceleration {
+            // DV caps the speed-up; comparing with DV − AC avoids the sum, which at a cycle of
+            // seconds (AC near 2³¹ pulses/cycle²) can pass i64 in raw bits.
+            p.drive
         } else {
-            // Saturating: at a cycle of seconds AC alone is near 2³¹ pulses/cycle², and with the
-            // velocity it can pass i64 in raw bits; DV caps the sum anyway.
-            velocity.saturating_add(p.acceleration).min(p.drive)
+            before + p.acceleration
         }
     }
 }
@@ -231,23 +240,21 @@ impl Mcx514Trapezoidal {
 impl ProfileGenerator for Mcx514Trapezoidal {
     fn step(&mut self) -> State {
         let before = self.state.velocity.to_bits();
-        let velocity = if self.complete {
-            0
-        } else {
-            let left = self.profile.finish - self.state.position.to_bits();
+        let position = self.state.position.to_bits();
+        let (mut velocity, mut cut) = (0, true);
+        if !self.complete {
             // At most the pulses left: the move lands exactly on the finish point. i64: both
             // below 2³¹ pulses in raw I32F32.
-            let wanted = self.next_velocity();
-            let velocity = wanted.min(left);
-            self.cut = velocity < wanted;
+            let left = self.profile.finish - position;
+            let wanted = self.next_velocity(position, before, left);
+            velocity = wanted.min(left);
+            // The ends of the move: cut to the pulses left, or the stop to zero.
+            cut = velocity < wanted || velocity == 0;
             if velocity > before && !self.decelerating {
-                self.accelerated = self.state.position.to_bits() + velocity;
+                self.accelerated = position + velocity;
             }
-            velocity
-        };
-        self.cut |= velocity == 0;
-        // A drop beyond both DC and SV only happens at a late finish or after an abrupt stop.
-        self.exempt = before - velocity > self.profile.deceleration.max(self.profile.initial);
+        }
+        self.cut = cut;
         let state = advance(&mut self.state, I32F32::from_bits(velocity));
         if velocity == 0 || state.position.to_bits() == self.profile.finish {
             // Complete at rest; on the finish point the next cycle drops to zero.
@@ -295,7 +302,10 @@ impl ProfileGenerator for Mcx514Trapezoidal {
             })),
             max_acceleration: None,
             max_jerk: None,
-            exempt: self.exempt,
+            // A drop beyond both DC and SV only happens at a late finish or after an abrupt
+            // stop: the last cycle's velocity change is −drop.
+            exempt: self.state.acceleration.to_bits().wrapping_neg()
+                > p.deceleration.max(p.initial),
         }
     }
 }

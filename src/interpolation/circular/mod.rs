@@ -335,22 +335,28 @@ impl Arc {
         }
     }
 
-    /// The point `offset` steps into traversal piece `piece` (0 … its steps), relative to the
-    /// centre.
-    fn point(&self, piece: u32, offset: u32) -> [i32; 2] {
+    /// The long and short coordinates `offset` steps into an outbound or inbound piece (0 … its
+    /// steps): outbound s = offset, and past m only the diagonal step's end (m, m + 1); inbound
+    /// s = m − offset. The long coordinate is f(s).
+    #[inline]
+    fn long_and_short(&self, outbound: bool, offset: u32) -> (u32, u32) {
         let m = self.inbound_steps;
-        let (long, short) = if piece % 2 == 0 {
-            // Outbound: s = offset; past m only the diagonal step's end (m, m + 1).
+        if outbound {
             if offset <= m {
                 (self.long_at(offset), offset)
             } else {
                 (m, offset)
             }
         } else {
-            // Inbound: s = m − offset ≥ 0.
             let short = m - offset;
             (self.long_at(short), short)
-        };
+        }
+    }
+
+    /// The point `offset` steps into traversal piece `piece` (0 … its steps), relative to the
+    /// centre.
+    fn point(&self, piece: u32, offset: u32) -> [i32; 2] {
+        let (long, short) = self.long_and_short(piece % 2 == 0, offset);
         let (long_is_x, sign_x, sign_y) = FRAMES[usize::from(self.octant_of(piece).0)];
         // Both below 2³¹ (the reach was checked): the casts are exact.
         let (long, short) = (long as i32, short as i32);

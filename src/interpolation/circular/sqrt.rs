@@ -29,7 +29,7 @@ pub(crate) fn isqrt(n: u64) -> u32 {
     let high = (n >> 30) as u32;
     let low = (n as u32) & ((1 << 30) - 1);
     let (digit_1, digit_0) = (low >> 15, low & 0x7fff);
-    let root_high = high.isqrt();
+    let root_high = isqrt_normalized(high);
     // r₁ ≤ 2·s₁ < 2¹⁷, so r₁·2¹⁵ + a₁ < 2³²: one 32-bit division.
     let remainder_high = high - root_high * root_high;
     let numerator = (remainder_high << 15) | digit_1;
@@ -45,6 +45,34 @@ pub(crate) fn isqrt(n: u64) -> u32 {
     };
     root >> (shift / 2)
 }
+
+/// ⌊√h⌋ for h ∈ [2³⁰, 2³²): a table of the top ten bits, one Newton step, one correction.
+///
+/// For h in the table's bucket i (i·2²² ≤ h < (i + 1)·2²², 256 ≤ i < 1024) the start
+/// x₀ = ⌊√((i + 1)·2²² − 1)⌋ + 1 lies above √h by at most 2¹¹·(√(i + 1) − √i) + 1 ≤ 65; one
+/// Newton step x₁ = ⌊(x₀ + ⌊h / x₀⌋) / 2⌋ stays at or above ⌊√h⌋ (the integer Newton step never
+/// undershoots) and within (x₀ − √h)² / (2·x₀) ≤ 65² / 2¹⁶ < 0.07 above √h, so x₁ is ⌊√h⌋ or one
+/// more, which x₁² > h tells.
+#[inline]
+fn isqrt_normalized(high: u32) -> u32 {
+    let start = u32::from(ROOTS[(high >> 22) as usize - 256]) + 1;
+    let root = (start + high / start) >> 1;
+    // x₁ ≤ 2¹⁶: its square needs 33 bits.
+    root - u32::from(u64::from(root) * u64::from(root) > u64::from(high))
+}
+
+/// ⌊√((i + 1)·2²² − 1)⌋ for i = 256 … 1023, computed when compiling.
+static ROOTS: [u16; 768] = {
+    let mut roots = [0u16; 768];
+    let mut i = 0;
+    while i < 768 {
+        let top = ((i as u64 + 257) << 22) - 1;
+        // Below 2¹⁶: the cast is exact.
+        roots[i] = top.isqrt() as u16;
+        i += 1;
+    }
+    roots
+};
 
 /// √n rounded to the nearest integer (there are no ties: (q + ½)² is never an integer), for
 /// n < 2⁶²: ⌊√n⌋ plus one when n − q² > q, i.e. n ≥ q² + q + ¼.
@@ -91,6 +119,31 @@ mod tests {
         }
         for n in cases {
             assert!(is_floor_root(n, isqrt(n)), "isqrt({n}) = {}", isqrt(n));
+        }
+    }
+
+    #[test]
+    fn the_normalized_root_is_exact_at_every_bucket_edge_and_square() {
+        // Every square k² and its neighbours in [2³⁰, 2³²), and every bucket's ends.
+        for k in 32_768u64..=65_536 {
+            for n in [k * k - 1, k * k, k * k + k, k * k + 2 * k] {
+                if (1 << 30..1 << 32).contains(&n) {
+                    let n = n as u32;
+                    assert!(
+                        is_floor_root(u64::from(n), super::isqrt_normalized(n)),
+                        "{n}"
+                    );
+                }
+            }
+        }
+        for bucket in 256u64..1024 {
+            for n in [bucket << 22, ((bucket + 1) << 22) - 1] {
+                let n = n as u32;
+                assert!(
+                    is_floor_root(u64::from(n), super::isqrt_normalized(n)),
+                    "{n}"
+                );
+            }
         }
     }
 

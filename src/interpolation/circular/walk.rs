@@ -1,6 +1,6 @@
 //! A cursor on an [`Arc`]: the step count, the octant it is in and the position there.
 
-use super::{Arc, Octant};
+use super::{Arc, Octant, FRAMES};
 
 /// A position on an [`Arc`]: the step count, the octant of the last step, and both axes'
 /// positions. It keeps the octant it is in, so a jump of any number of steps
@@ -16,21 +16,61 @@ pub struct ArcWalk {
     step: u64,
     /// The traversal piece (see `Arc::octant_of`) holding the last step (the first step at 0).
     piece: u32,
-    /// The arc step at which that piece begins (≤ 0 for the start's piece).
-    piece_start: i64,
+    /// Where that piece begins and ends, counted in steps from the start of the start's piece
+    /// (the arc's step plus `Arc::first_offset`, so never negative).
+    piece_start: u64,
+    piece_end: u64,
+    /// The piece's frame: outbound, and the octant's table row (see `FRAMES`).
+    outbound: bool,
+    long_is_x: bool,
+    signs: [i32; 2],
     /// Both axes, pulses relative to the start.
     position: [i32; 2],
 }
 
 impl ArcWalk {
     pub(super) fn new(arc: Arc) -> Self {
-        Self {
+        let mut walk = Self {
             arc,
             step: 0,
             piece: arc.first_piece,
-            piece_start: -i64::from(arc.first_offset),
+            piece_start: 0,
+            piece_end: 0,
+            outbound: true,
+            long_is_x: true,
+            signs: [1, 1],
             position: [0, 0],
+        };
+        walk.enter(arc.first_piece, 0);
+        walk
+    }
+
+    /// Makes `piece`, beginning at `start`, the present piece.
+    fn enter(&mut self, piece: u32, start: u64) {
+        let (long_is_x, sign_x, sign_y) = FRAMES[usize::from(self.arc.octant_of(piece).index())];
+        self.piece = piece;
+        self.piece_start = start;
+        self.piece_end = start + u64::from(self.arc.piece_steps(piece));
+        self.outbound = piece % 2 == 0;
+        self.long_is_x = long_is_x;
+        self.signs = [sign_x, sign_y];
+    }
+
+    /// Moves to the piece holding `last` (a position counted as `piece_start`): at most the
+    /// octants of one circle either way.
+    #[cold]
+    fn find_piece(&mut self, last: u64) {
+        let (mut piece, mut start) = (self.piece, self.piece_start);
+        while last >= start + u64::from(self.arc.piece_steps(piece)) {
+            start += u64::from(self.arc.piece_steps(piece));
+            piece += 1;
         }
+        while last < start {
+            // Never before the start's piece, which begins at 0.
+            piece -= 1;
+            start -= u64::from(self.arc.piece_steps(piece));
+        }
+        self.enter(piece, start);
     }
 
     /// The arc being followed.
@@ -62,28 +102,29 @@ impl ArcWalk {
     /// Moves to `step` (forward or back; past the end means the end) and returns both axes'
     /// positions there: what a cycle that takes many steps calls.
     pub fn advance_to(&mut self, step: u64) -> [i32; 2] {
-        let arc = &self.arc;
-        let step = step.min(arc.steps);
+        let step = step.min(self.arc.steps);
         self.step = step;
-        // i64: an arc has at most 4·(D + m) < 2³⁵ steps. The piece must hold step − 1, the
-        // position the last step left (step 0: the start itself).
-        let (target, last) = (step as i64, step.max(1) as i64 - 1);
-        while last >= self.piece_start + i64::from(arc.piece_steps(self.piece)) {
-            self.piece_start += i64::from(arc.piece_steps(self.piece));
-            self.piece += 1;
+        // Counted from the start's piece; the piece must hold the position the last step left
+        // (step 0: the start itself).
+        let at = step + u64::from(self.arc.first_offset);
+        let last = at - u64::from(step != 0);
+        if last < self.piece_start || last >= self.piece_end {
+            self.find_piece(last);
         }
-        while last < self.piece_start {
-            // Never before the start's piece, which begins at or before step 0.
-            self.piece -= 1;
-            self.piece_start -= i64::from(arc.piece_steps(self.piece));
-        }
-        // 0 … the piece's steps (the end of a piece is the next one's start).
-        let offset = (target - self.piece_start) as u32;
-        let point = arc.point(self.piece, offset);
+        // 0 … the piece's steps (the end of a piece is the next one's start): below 2³¹.
+        let offset = (at - self.piece_start) as u32;
+        let (long, short) = self.arc.long_and_short(self.outbound, offset);
+        // Both below 2³¹ (the reach was checked when the arc was built): the casts are exact.
+        let (long, short) = (long as i32, short as i32);
+        let (x, y) = if self.long_is_x {
+            (long, short)
+        } else {
+            (short, long)
+        };
         // Within i32: the reach of the circle was checked when the arc was built.
         self.position = [
-            point[0].wrapping_add(arc.centre[0]),
-            point[1].wrapping_add(arc.centre[1]),
+            (self.signs[0] * x).wrapping_add(self.arc.centre[0]),
+            (self.signs[1] * y).wrapping_add(self.arc.centre[1]),
         ];
         self.position
     }
