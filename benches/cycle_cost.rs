@@ -5,6 +5,8 @@
 //!   the longest run of the phase, found by stepping the move first);
 //! - `set up a move`: planning (S-curve) and validation (trapezoid);
 //! - `microstep lookup`: `MicrostepTable::outputs`;
+//! - `3-axis line per cycle`: `LinearInterpolation::step` (profile plus geometry, SPEC §16) on
+//!   reference 003's line, driven by the MCX514 trapezoid and by the crate's trapezoid, by phase;
 //! - `peers: per step`: stepgen and ramp-maker on the same move in steps, by phase windows as
 //!   above, delays per step;
 //! - `peers: per cycle` and `peers: plan`: rsruckig and s_curve on the bench move.
@@ -27,7 +29,12 @@ use criterion::measurement::WallTime;
 use criterion::{
     black_box, criterion_group, criterion_main, BenchmarkGroup, Criterion, Throughput,
 };
-use profilegen::{ProfileGenerator, State};
+use profilegen::format::CycleTime;
+use profilegen::interpolation::Line;
+use profilegen::{
+    DecelerationMode, Mcx514Parameters, Mcx514Trapezoidal, ProfileGenerator, State, Trapezoidal,
+    TrapezoidalParameters,
+};
 
 /// The longest window timed, cycles or steps.
 const WINDOW: u64 = 1_000;
@@ -123,6 +130,88 @@ fn cycle_cost(c: &mut Criterion) {
     );
     generator_phases(&mut group, "trapezoidal", &common::trapezoidal());
     generator_phases(&mut group, "scurve", &common::scurve());
+    group.finish();
+}
+
+/// Reference 003's 3-axis line: finish (−20000, 30000, −50000), 50,000 steps.
+fn manual_line() -> Line<3> {
+    Line::from_pulses([-20_000, 30_000, -50_000]).unwrap()
+}
+
+/// Its MCX514 trapezoid at a 1 ms cycle: SV 500 pps, DV 20,000 pps, AC = DC = 65,000 pps/s
+/// (0.5 and 20 steps/cycle, 0.065 steps/cycle²), automatic deceleration.
+fn manual_line_mcx514() -> Mcx514Trapezoidal {
+    use profilegen::format::mcx514::{Acceleration, Deceleration, DriveSpeed, InitialSpeed};
+    Mcx514Trapezoidal::new(
+        Mcx514Parameters {
+            pulses: manual_line().steps(),
+            initial_speed: InitialSpeed::from_bits(500).unwrap(),
+            drive_speed: DriveSpeed::from_bits(20_000).unwrap(),
+            acceleration: Acceleration::from_bits(65_000).unwrap(),
+            deceleration: Deceleration::from_bits(65_000).unwrap(),
+            deceleration_mode: DecelerationMode::Automatic,
+        },
+        CycleTime::from_seconds(1e-3).unwrap(),
+    )
+    .unwrap()
+}
+
+/// The crate's trapezoid on the same line: 20 steps/cycle, 0.065 steps/cycle².
+fn manual_line_trapezoid() -> Trapezoidal {
+    use profilegen::format::juno::{Acceleration, TargetVelocity};
+    Trapezoidal::new(TrapezoidalParameters {
+        destination: manual_line().steps() as i32,
+        max_velocity: TargetVelocity::from_num(20.0).unwrap(),
+        acceleration: Acceleration::from_num(0.065).unwrap(),
+        deceleration: Acceleration::ZERO,
+        start_velocity: TargetVelocity::ZERO,
+    })
+    .unwrap()
+}
+
+/// One profile's phase windows on the manual's line: each window times `LinearInterpolation::step`
+/// from a copy of the profile advanced to it (the line's set-up, one jump, is not timed).
+fn line_phases<G: ProfileGenerator + Clone>(
+    group: &mut BenchmarkGroup<'_, WallTime>,
+    name: &str,
+    start: &G,
+) {
+    let line = manual_line();
+    for (phase, label) in PHASES {
+        let (first, length) = generator_window(start, phase, WINDOW);
+        if length == 0 {
+            continue;
+        }
+        let at = common::advanced(start, first);
+        group.throughput(Throughput::Elements(length));
+        group.bench_function(format!("{name}/{label}"), |b| {
+            b.iter_custom(|iterations| {
+                let mut total = Duration::ZERO;
+                for _ in 0..iterations {
+                    let mut profile = at.clone();
+                    let mut interpolation = line.drive(&mut profile);
+                    let start = Instant::now();
+                    let mut accumulator = 0i64;
+                    for _ in 0..length {
+                        let state = interpolation.step();
+                        accumulator = fold(accumulator, state.driving)
+                            ^ i64::from(state.axes[0])
+                            ^ i64::from(state.axes[1]).rotate_left(21)
+                            ^ i64::from(state.axes[2]).rotate_left(42);
+                    }
+                    total += start.elapsed();
+                    black_box(accumulator);
+                }
+                total
+            })
+        });
+    }
+}
+
+fn line_cost(c: &mut Criterion) {
+    let mut group = c.benchmark_group("3-axis line per cycle");
+    line_phases(&mut group, "mcx514", &manual_line_mcx514());
+    line_phases(&mut group, "trapezoidal", &manual_line_trapezoid());
     group.finish();
 }
 
@@ -269,6 +358,7 @@ fn peers_per_cycle(c: &mut Criterion) {
 criterion_group!(
     benches,
     cycle_cost,
+    line_cost,
     setup_cost,
     microstep,
     peers_per_step,

@@ -1,6 +1,7 @@
 //! Plots a run of `profile_table` (same modes, options and events, SPEC §13) as an SVG: position,
 //! velocity and acceleration against time in seconds, in three aligned panels, with the cycle
-//! count on a secondary axis, and the S-curve's phases I–VII marked and labelled.
+//! count on a secondary axis, and the S-curve's phases I–VII marked and labelled. In `mcx514`
+//! mode: the XY path of the interpolation, pulse by pulse, with the ideal line beside it.
 //!
 //! `cargo run --release --example plot -- --help` prints the usage.
 //!
@@ -29,6 +30,9 @@ MODE and the profile options, events and --cycles: as profile_table (its --help 
     velocity | trapezoidal | scurve
     --velocity V --acceleration A --deceleration D --jerk J --destination X --start-velocity S
     --event N:KEY=VALUE[,KEY=VALUE…]   --cycles N (at most 100,000,000 here)
+    mcx514 (the XY path of the first two axes and the ideal line)
+    --cycle-time S --initial-speed PPS --drive-speed PPS --acceleration PPS_PER_S
+    --deceleration PPS_PER_S --decel-point PULSES | --no-decel --finish DX,DY[,DZ[,DU]]
 
 OPTIONS of the plot:
     --output FILE        the SVG to write (required)
@@ -42,6 +46,8 @@ EXIT STATUS: 0 done, 2 bad command line, 3 the move was cut short by the 10,000,
 EXAMPLE:
     plot scurve --destination 400 --velocity 2.75 --acceleration 0.175 --jerk 0.0075 \\
         --output scurve.svg
+    plot mcx514 --cycle-time 0.001 --initial-speed 500 --drive-speed 20000 \\
+        --acceleration 65000 --finish 37,23 --output line.svg
 ";
 
 /// The picture's size in pixels, and the plotting area's width (the columns of the decimation).
@@ -62,6 +68,7 @@ fn main() -> ExitCode {
             return ExitCode::SUCCESS;
         }
         Ok(Request::Run(options)) => options,
+        Ok(Request::Mcx514(options)) => return plot_mcx514(&options),
         Err(message) => return fail(&message, cli::USAGE),
     };
     // Two passes over the run: a length that takes minutes to step is refused up front.
@@ -110,6 +117,140 @@ fn main() -> ExitCode {
         return ExitCode::from(cli::CUT_SHORT);
     }
     ExitCode::SUCCESS
+}
+
+/// The points of the XY path kept for the picture: every change of position while the line has
+/// at most this many steps, else one every steps/this steps (and the last).
+const PATH_POINTS: u64 = 20_000;
+
+/// `mcx514` mode: the XY path (the first two axes, pulses) and the ideal line to the finish point.
+fn plot_mcx514(options: &cli::mcx514::Options) -> ExitCode {
+    if let Some(cycles) = options.cycles.filter(|&cycles| cycles > MAX_PLOTTED) {
+        return fail(
+            &format!("--cycles '{cycles}': a plot steps at most {MAX_PLOTTED} cycles"),
+            cli::USAGE,
+        );
+    }
+    let cli::mcx514::Geometry::Line(finish) = &options.geometry;
+    let long = finish.iter().map(|d| d.unsigned_abs()).max().unwrap_or(0);
+    let stride = (u64::from(long) / PATH_POINTS).max(1);
+    let mut path: Vec<(i32, i32)> = vec![(0, 0)];
+    let (mut last_step, mut last_cycle, mut last_point) = (0u64, 0, (0, 0));
+    let ending = cli::mcx514::run(options, |cycle, row| {
+        let step = (row.driving.position.to_bits() >> 32).max(0) as u64;
+        let point = (row.axes[0], row.axes[1]);
+        if step >= last_step + stride && path.last() != Some(&point) {
+            path.push(point);
+            last_step = step;
+        }
+        (last_cycle, last_point) = (cycle, point);
+        Ok::<(), ()>(())
+    })
+    .expect("collecting does not fail");
+    // The final position is always on the path.
+    if path.last() != Some(&last_point) {
+        path.push(last_point);
+    }
+    let title = format!(
+        "MCX514 linear interpolation to ({}), {} µs per cycle, {last_cycle} cycles\n\
+         SV {}, DV {}, AC {}, DC {}, {}",
+        finish
+            .iter()
+            .map(i32::to_string)
+            .collect::<Vec<_>>()
+            .join(", "),
+        options.cycle_seconds * 1e6,
+        options.profile.initial_speed,
+        options.profile.drive_speed,
+        options.profile.acceleration,
+        options.profile.deceleration,
+        match options.profile.deceleration_mode {
+            profilegen::DecelerationMode::Automatic => "automatic deceleration".to_string(),
+            profilegen::DecelerationMode::Manual(point) => format!("deceleration at {point}"),
+            profilegen::DecelerationMode::Disabled => "deceleration disabled".to_string(),
+        }
+    );
+    let output = options.output.clone().expect("required when parsed");
+    if let Err(error) = draw_path(&output, &title, &path, (finish[0], finish[1])) {
+        return fail(&format!("--output '{output}': {error}"), 1);
+    }
+    if ending == Ending::CutShort {
+        eprintln!("{}", cli::cut_short_warning());
+        return ExitCode::from(cli::CUT_SHORT);
+    }
+    ExitCode::SUCCESS
+}
+
+/// Draws the XY path as steps (each pulse a unit move, as the axes output them) and the ideal
+/// line from the start to the finish point, on equal scales.
+fn draw_path(
+    path: &str,
+    title: &str,
+    points: &[(i32, i32)],
+    finish: (i32, i32),
+) -> Result<(), Box<dyn std::error::Error>> {
+    let root = SVGBackend::new(path, (900, 900)).into_drawing_area();
+    root.fill(&WHITE)?;
+    let mut root = root;
+    for (line, size) in title.lines().zip([20, 16]) {
+        root = root.titled(line, ("sans-serif", size))?;
+    }
+    // Equal scales: one square range around both ends.
+    let (x0, x1) = (finish.0.min(0) as f64, finish.0.max(0) as f64);
+    let (y0, y1) = (finish.1.min(0) as f64, finish.1.max(0) as f64);
+    let span = (x1 - x0).max(y1 - y0).max(1.0) * 1.08;
+    let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
+    let mut chart = ChartBuilder::on(&root)
+        .margin(MARGIN)
+        .x_label_area_size(40)
+        .y_label_area_size(Y_LABELS_WIDTH)
+        .build_cartesian_2d(
+            cx - span / 2.0..cx + span / 2.0,
+            cy - span / 2.0..cy + span / 2.0,
+        )?;
+    chart
+        .configure_mesh()
+        .x_desc("x (pulses)")
+        .y_desc("y (pulses)")
+        .light_line_style(RGBColor(235, 235, 235))
+        .draw()?;
+    let ideal = RGBColor(214, 39, 40);
+    chart
+        .draw_series(DashedLineSeries::new(
+            [(0.0, 0.0), (finish.0 as f64, finish.1 as f64)],
+            6,
+            4,
+            ideal.stroke_width(1),
+        ))?
+        .label("the ideal line")
+        .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], ideal.stroke_width(1)));
+    // Each pulse as the axes make it: x first, then y (a staircase when points are one pulse
+    // apart; a polyline through the kept points otherwise).
+    let mut staircase = Vec::with_capacity(points.len() * 2);
+    for pair in points.windows(2) {
+        let ((xa, ya), (xb, yb)) = (pair[0], pair[1]);
+        staircase.push((xa as f64, ya as f64));
+        if (xb - xa).abs() <= 1 && (yb - ya).abs() <= 1 {
+            staircase.push((xb as f64, ya as f64));
+        }
+    }
+    if let Some(&(x, y)) = points.last() {
+        staircase.push((x as f64, y as f64));
+    }
+    let path_color = RGBColor(31, 119, 180);
+    chart
+        .draw_series(LineSeries::new(staircase, path_color.stroke_width(2)))?
+        .label("the interpolated path (x, y pulses)")
+        .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], path_color.stroke_width(2)));
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperLeft)
+        .background_style(WHITE.mix(0.85))
+        .border_style(RGBColor(180, 180, 180))
+        .label_font(("sans-serif", 14))
+        .draw()?;
+    root.present()?;
+    Ok(())
 }
 
 fn fail(message: &str, status: u8) -> ExitCode {

@@ -9,6 +9,7 @@ use std::process::ExitCode;
 
 mod cli;
 
+use cli::mcx514::Row;
 use cli::{Ending, Format, Options, Program, Request};
 use profilegen::State;
 
@@ -22,6 +23,8 @@ MODE:
     velocity       Juno velocity contouring      needs --velocity --acceleration
     trapezoidal    trapezoidal point-to-point    needs --destination --velocity --acceleration
     scurve         MC1451A S-curve               needs --destination --velocity --acceleration --jerk
+    mcx514         NOVA MCX514 interpolation     needs --cycle-time --initial-speed --drive-speed
+                                                 --acceleration --finish (its options below)
 
 OPTIONS (values are decimals in per-cycle units, rounded to the mode's registers):
     --velocity V         counts/cycle (velocity mode: signed target; others: maximum)
@@ -45,6 +48,23 @@ OPTIONS (values are decimals in per-cycle units, rounded to the mode's registers
 Row 0 is the initial state; columns: cycle, position (counts), velocity (counts/cycle),
 acceleration (counts/cycle²).
 
+MCX514 MODE (SPEC §12: the chip's own units, converted with the cycle time):
+    --cycle-time SECONDS        the cycle (the controller's timer tick)
+    --initial-speed PPS         SV, 1 … 8,000,000 pps: the start and the end of the ramps
+    --drive-speed PPS           DV, 1 … 8,000,000 pps
+    --acceleration PPS_PER_S    AC, 1 … 536,870,911 pps/s
+    --deceleration PPS_PER_S    DC (default AC; automatic deceleration needs DC = AC)
+    --decel-point PULSES        manual deceleration point, in driving-axis (long-axis) pulses
+    --no-decel                  deceleration disabled: DV from the start to the finish point
+    --finish DX,DY[,DZ[,DU]]    linear interpolation of 2–4 axes to that relative finish point
+    --event N:stop=smooth|abrupt
+                                a stop before cycle N (the only events of this mode)
+    --cycles, --every, --format as above.
+Without --decel-point or --no-decel, deceleration is automatic. The columns are the driving axis
+(position in interpolation steps, velocity, acceleration, as above) and then every axis's pulse
+position relative to the start: cycle,position,velocity,acceleration,x,y[,z,u]. The S-curve
+(--jerk, --decel-jerk) is not in this version.
+
 EXIT STATUS:
     0  done    2  bad command line (one line on stderr, nothing on stdout)
     3  the move was cut short by the 10,000,000-cycle cap (a warning on stderr)
@@ -56,6 +76,8 @@ EXAMPLES:
         --event 40:stop=smooth --event 120:destination=0,velocity=2 --format csv
     profile_table trapezoidal --destination 1000 --velocity 8 --acceleration 0.5 \\
         --start-velocity 1 --event 100:destination=-500
+    profile_table mcx514 --cycle-time 0.001 --initial-speed 500 --drive-speed 20000 \\
+        --acceleration 65000 --decel-point 45000 --finish -20000,30000,-50000 --every 100
 ";
 
 fn write_header(out: &mut impl Write, format: Format) -> io::Result<()> {
@@ -93,6 +115,93 @@ fn write_row(out: &mut impl Write, format: Format, cycle: u64, state: &State) ->
     }
 }
 
+/// The `mcx514` header: the driving axis, then one column per axis.
+fn write_mcx514_header(out: &mut impl Write, format: Format, axes: usize) -> io::Result<()> {
+    const NAMES: [&str; 4] = ["x", "y", "z", "u"];
+    match format {
+        Format::Table => {
+            write!(
+                out,
+                "{:>9} {:>22} {:>22} {:>22}",
+                "cycle", "position", "velocity", "acceleration"
+            )?;
+            for name in &NAMES[..axes] {
+                write!(out, " {name:>11}")?;
+            }
+        }
+        Format::Csv | Format::Raw => {
+            write!(out, "cycle,position,velocity,acceleration")?;
+            for name in &NAMES[..axes] {
+                write!(out, ",{name}")?;
+            }
+        }
+    }
+    writeln!(out)
+}
+
+/// One `mcx514` row: the driving axis as in the other modes, then each axis's pulses (integers
+/// in every format).
+fn write_mcx514_row(out: &mut impl Write, format: Format, cycle: u64, row: &Row) -> io::Result<()> {
+    let state = &row.driving;
+    match format {
+        Format::Table => {
+            write!(
+                out,
+                "{cycle:>9} {:>22} {:>22} {:>22}",
+                state.position.to_string(),
+                state.velocity.to_string(),
+                state.acceleration.to_string()
+            )?;
+            for axis in &row.axes {
+                write!(out, " {axis:>11}")?;
+            }
+        }
+        Format::Csv => {
+            write!(
+                out,
+                "{cycle},{},{},{}",
+                state.position, state.velocity, state.acceleration
+            )?;
+            for axis in &row.axes {
+                write!(out, ",{axis}")?;
+            }
+        }
+        Format::Raw => {
+            write!(
+                out,
+                "{cycle},{},{},{}",
+                state.position.to_bits(),
+                state.velocity.to_bits(),
+                state.acceleration.to_bits()
+            )?;
+            for axis in &row.axes {
+                write!(out, ",{axis}")?;
+            }
+        }
+    }
+    writeln!(out)
+}
+
+/// As [`run`], for the `mcx514` mode.
+fn run_mcx514(options: &cli::mcx514::Options, out: &mut impl Write) -> io::Result<Ending> {
+    write_mcx514_header(out, options.format, options.geometry.axes())?;
+    let mut last: Option<(u64, Row)> = None;
+    let ending = cli::mcx514::run(options, |cycle, row| {
+        if cycle % options.every == 0 {
+            last = None;
+            write_mcx514_row(out, options.format, cycle, row)
+        } else {
+            last = Some((cycle, row.clone()));
+            Ok(())
+        }
+    })?;
+    if let Some((cycle, row)) = last {
+        write_mcx514_row(out, options.format, cycle, &row)?;
+    }
+    out.flush()?;
+    Ok(ending)
+}
+
 /// Prints the run as it is computed (buffered, so each row is not a system call), every K-th row
 /// and the last one.
 fn run(
@@ -126,6 +235,10 @@ fn main() -> ExitCode {
             return ExitCode::SUCCESS;
         }
         Ok(Request::Run(options)) => options,
+        Ok(Request::Mcx514(options)) => {
+            let mut out = BufWriter::new(io::stdout().lock());
+            return finish(run_mcx514(&options, &mut out));
+        }
         Err(message) => return usage_error(&message),
     };
     let mut generator = match cli::generator(&options) {
@@ -133,7 +246,12 @@ fn main() -> ExitCode {
         Err(message) => return usage_error(&message),
     };
     let mut out = BufWriter::new(io::stdout().lock());
-    match run(&options, &mut generator, &mut out) {
+    finish(run(&options, &mut generator, &mut out))
+}
+
+/// The exit status of a run: its ending, or the output's error.
+fn finish(result: io::Result<Ending>) -> ExitCode {
+    match result {
         Ok(Ending::Done) => ExitCode::SUCCESS,
         Ok(Ending::CutShort) => {
             eprintln!("{}", cli::cut_short_warning());

@@ -1,7 +1,7 @@
 //! SPEC §12.3: the linear interpolation geometry. Every expectation here is the ideal line itself,
 //! compared exactly in integers (i128): |posᵢ(k) − k·Δᵢ/L| ≤ ½ is |2·posᵢ·L − 2·k·Δᵢ| ≤ L. On top:
 //! at most one pulse per axis per step, never backwards, the long axis on every step, the finish
-//! point exactly at the end, and the O(1) jump (`advance_to`) equal to the step-by-step walk.
+//! point exactly at the end, and the division-free evaluation equal to the rule's division.
 
 use profilegen::interpolation::Line;
 use profilegen::Error;
@@ -61,7 +61,11 @@ fn check_every_step<const N: usize>(line: &Line<N>) {
         assert_eq!(walk.step(), step);
         check_at(line, step, after);
         check_one_step(line, before, after);
-        assert_eq!(after, line.position_at(step), "walk and jump agree");
+        assert_eq!(
+            after,
+            line.position_by_division(step),
+            "the fast form is the rule"
+        );
         before = after;
     }
     assert_eq!(step, line.steps());
@@ -243,6 +247,49 @@ fn check_random_steps<const N: usize>(line: &Line<N>, fractions: &[u32]) {
     assert_eq!(line.position_at(steps), line.finish());
 }
 
+/// The division-free evaluation against the rule's division, side by side, at `count` random
+/// steps (anywhere on the line, the ends, and past them) and at every step near both ends.
+fn check_against_division<const N: usize>(line: &Line<N>, count: u32, seed: u64) {
+    let steps = line.steps();
+    let mut state = seed | 1;
+    let near_ends = (0..steps.min(64)).chain(steps.saturating_sub(64)..=steps);
+    let random = (0..count).map(|_| {
+        let random = next_random(&mut state);
+        match random % 8 {
+            0 => u32::MAX,
+            1 => steps.saturating_add((random >> 8) as u32 % 4),
+            _ => ((random >> 8) % (u64::from(steps) + 1)) as u32,
+        }
+    });
+    for step in near_ends.chain(random) {
+        assert_eq!(
+            line.position_at(step),
+            line.position_by_division(step),
+            "{:?} at step {step}",
+            line.finish()
+        );
+    }
+}
+
+#[test]
+fn the_extremes_equal_the_division() {
+    // L = 2³⁰ − 1 with magnitudes next to L, 1 and L/2, whose constants are rounded hardest, in
+    // both signs; and every line of 1 or 2 steps.
+    for sign in [1, -1] {
+        let line = Line::from_pulses([
+            sign * LIMIT,
+            -sign * (LIMIT - 1),
+            sign,
+            -sign * (LIMIT / 2 + 1),
+        ])
+        .unwrap();
+        check_against_division(&line, 100_000, 7);
+    }
+    for finish in [[1, 0], [1, -1], [2, 1], [-2, -1], [2, -2], [0, -2]] {
+        check_against_division(&Line::from_pulses(finish).unwrap(), 10, 1);
+    }
+}
+
 macro_rules! axes_properties {
     ($module:ident, $n:literal) => {
         mod $module {
@@ -263,6 +310,14 @@ macro_rules! axes_properties {
                     seed in any::<u64>(),
                 ) {
                     check_cycles(&Line::from_pulses(finish).unwrap(), cycles, seed);
+                }
+
+                #[test]
+                fn the_fast_form_equals_the_division(
+                    finish in prop::array::uniform::<_, $n>(coordinate()),
+                    seed in any::<u64>(),
+                ) {
+                    check_against_division(&Line::from_pulses(finish).unwrap(), 500, seed);
                 }
 
                 #[test]

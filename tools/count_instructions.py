@@ -487,6 +487,97 @@ def measure_other_generators(probe: Probe, moves: int) -> tuple[dict[str, list[i
     return steps, setups
 
 
+# Linear interpolation ------------------------------------------------------------------------------
+
+# The manual's line (reference 003): finish (-20000, 30000, -50000), and its MCX514 registers at a
+# 1 ms cycle: SV 500 pps, DV 20,000 pps, AC = DC = 65,000 pps/s (0.5 and 20 pulses/cycle, 0.065
+# pulses/cycle²), automatic, manual at 45,000 and disabled deceleration.
+MANUAL_LINE = (-20_000, 30_000, -50_000)
+MANUAL_LINE_MCX514 = [(1000, 500, 20_000, 65_000, 65_000, mode, 45_000) for mode in (0, 1, 2)]
+# The same line driven by the crate's trapezoid: 20 steps/cycle (16.16), 0.065 steps/cycle² (8.24).
+MANUAL_LINE_TRAPEZOID = (20 << 16, round(0.065 * 2**24), 0, 0)
+LINE_PROFILES = ("mcx514", "trapezoid")
+
+
+def random_line(rng, steps: int) -> tuple[int, int, int]:
+    """A 3-axis finish point whose long axis is `steps` pulses: the long axis at a random place and
+    sign, the others anywhere within it."""
+    axes = [rng.randint(-steps, steps) for _ in range(3)]
+    axes[rng.randrange(3)] = steps if rng.random() < 0.5 else -steps
+    return tuple(axes)
+
+
+def random_mcx514_lines(n: int, seed: int = 14) -> list[tuple[tuple[int, int, int], tuple]]:
+    """Deterministic MCX514-driven lines of at most a few thousand cycles: L log-uniform in
+    1 .. 10^6 pulses, a cycle of 100 µs, 250 µs or 1 ms, DV and AC log-uniform above the bounds
+    that keep the move short, SV log-uniform up to DV, automatic (AC = DC), manual (a random
+    point and DC) or disabled deceleration."""
+    import math
+    import random
+    rng = random.Random(seed)
+    log_uniform = lambda low, high: int(math.exp(rng.uniform(math.log(low), math.log(max(low, high)))))
+    lines = []
+    for _ in range(n):
+        steps = log_uniform(1, 1_000_000)
+        cycle_us = rng.choice((100, 250, 1000))
+        cycle = cycle_us * 1e-6
+        drive = log_uniform(max(1, math.ceil(steps / (2000 * cycle))), 8_000_000)
+        initial = log_uniform(max(1, math.ceil(steps / (8000 * cycle))), drive) if rng.random() < 0.9 \
+            else drive
+        initial = min(initial, drive)
+        acceleration = log_uniform(max(1, math.ceil(drive / (1500 * cycle))), 536_870_911)
+        mode = rng.choice((0, 1, 2))
+        deceleration = acceleration if mode != 1 else log_uniform(
+            max(1, math.ceil(drive / (1500 * cycle))), 536_870_911)
+        point = rng.randint(0, steps)
+        lines.append((random_line(rng, steps), (cycle_us, initial, drive, acceleration, deceleration, mode, point)))
+    return lines
+
+
+def random_trapezoid_lines(n: int, seed: int = 15) -> list[tuple[tuple[int, int, int], tuple]]:
+    """Deterministic trapezoid-driven lines: the random trapezoid moves' registers, the distance
+    as the long axis."""
+    import random
+    rng = random.Random(seed)
+    return [(random_line(rng, abs(distance)), (velocity, acceleration, deceleration, start))
+            for distance, velocity, acceleration, deceleration, start in random_trapezoid_moves(n, seed)]
+
+
+def step_line(probe: Probe, profile: str, finish: tuple[int, int, int], registers: tuple,
+              counts: list[int], max_cycles: int = 20_000) -> None:
+    """Sets up and steps one line to its end (and 2 cycles more), each cycle's count to `counts`;
+    checks that it ends on the finish point."""
+    kind = LINE_PROFILES.index(profile)
+    words = [kind, *finish, *registers]
+    words += [0] * (11 - len(words))
+    probe.uc.mem_write(SCRATCH_PAGE, struct.pack("<11I", *(w & 0xFFFF_FFFF for w in words)))
+    if probe.call("probe_line_setup", SCRATCH_PAGE).u64 == REFUSED:
+        raise ProbeFailure(f"line {finish} driven by {profile} {registers} refused")
+    for _ in range(max_cycles):
+        counts.append(probe.call(f"probe_line_step_{profile}").instructions)
+        if probe.call("probe_line_complete", SCRATCH_PAGE + 64).r0:
+            break
+    else:
+        raise ProbeFailure(f"line {finish} driven by {profile} {registers}: not complete in {max_cycles} cycles")
+    counts += [probe.call(f"probe_line_step_{profile}").instructions for _ in range(2)]
+    axes = [a - (1 << 32) if a >= 1 << 31 else a for a in probe.read_words(SCRATCH_PAGE + 64, 3)]
+    if tuple(axes) != finish:
+        raise ProbeFailure(f"line {finish} driven by {profile} {registers} ended at {axes}")
+
+
+def measure_lines(probe: Probe, moves: int) -> dict[str, list[int]]:
+    """Per-cycle counts of a 3-axis line (profile plus geometry), per driving profile."""
+    counts: dict[str, list[int]] = {profile: [] for profile in LINE_PROFILES}
+    for registers in MANUAL_LINE_MCX514:
+        step_line(probe, "mcx514", MANUAL_LINE, registers, counts["mcx514"])
+    step_line(probe, "trapezoid", MANUAL_LINE, MANUAL_LINE_TRAPEZOID, counts["trapezoid"])
+    for finish, registers in random_mcx514_lines(moves):
+        step_line(probe, "mcx514", finish, registers, counts["mcx514"])
+    for finish, registers in random_trapezoid_lines(moves):
+        step_line(probe, "trapezoid", finish, registers, counts["trapezoid"])
+    return counts
+
+
 # The manual's circle (reference 003): r = 10,000 full turn, SV 500, DV 20,000 pps, AC = DC
 # 65,000 pps/s, DP 53,493, at a 1 ms cycle. Words as `probe_circle_setup` takes them.
 MANUAL_CIRCLE = (10_000, 0, 0, 0, 1, 500, 20_000, 65_000, 65_000, 53_493, 1_000)
@@ -615,6 +706,11 @@ def main() -> int:
     parser.add_argument("--verify-steps", type=int, default=2000, help="steps checked by --verify (default 2000)")
     parser.add_argument("--trapezoid-moves", type=int, default=200,
                         help="random trapezoid moves stepped to the end (default %(default)s)")
+    parser.add_argument("--line-moves", type=int, default=100,
+                        help="random 3-axis lines stepped to the end, per driving profile (default %(default)s)")
+    parser.add_argument("--line-budget", action="append", default=[], metavar="PROFILE=N",
+                        help="fail when a cycle of a 3-axis line driven by PROFILE (mcx514, trapezoid) "
+                             "executes more than N instructions (profile plus geometry); repeatable")
     parser.add_argument("--circle-moves", type=int, default=20,
                         help="random MCX514 circles stepped to the end, besides the manual's (default %(default)s)")
     parser.add_argument("--circle-budget", type=int,
@@ -623,6 +719,13 @@ def main() -> int:
                         help="functions listed for the worst plan (default %(default)s)")
     parser.add_argument("--top", type=int, default=5, help="the most expensive plans listed (default 5)")
     args = parser.parse_args()
+
+    line_budgets: dict[str, int] = {}
+    for budget in args.line_budget:
+        name, _, value = budget.partition("=")
+        if name not in LINE_PROFILES or not value.isdigit():
+            parser.error(f"--line-budget {budget!r}: expected PROFILE=N with PROFILE one of {', '.join(LINE_PROFILES)}")
+        line_budgets[name] = int(value)
 
     if not os.path.exists(args.elf):
         print(f"error: no probe image at {args.elf}: build it first "
@@ -691,10 +794,18 @@ def main() -> int:
                   f"({len(counts_)} cycles)")
         print(f"  {'Trapezoid set-up (plans)':26} max {max(setups):4}, mean {statistics.fmean(setups):6.1f} "
               f"instructions ({len(setups)} moves; reported, not budgeted here)")
+        print(f"== a 3-axis linear interpolation, one call per cycle (LinearInterpolation::step: the "
+              f"profile plus the geometry; the manual's line and {args.line_moves} random lines per profile)")
+        lines_started = time.monotonic()
+        lines = measure_lines(probe, args.line_moves)
+        for name, counts_ in lines.items():
+            print(f"  {'3-axis line, ' + name:26} max {max(counts_):4}, mean {statistics.fmean(counts_):6.1f} "
+                  f"instructions ({len(counts_)} cycles)")
+        print(f"  ({time.monotonic() - lines_started:.1f} s)")
         print(f"== MCX514 circular interpolation, one call per cycle (profile and arc; the manual's "
               f"circle and {args.circle_moves} random ones, each to its end)")
         circle_counts = measure_circles(probe, args.circle_moves)
-        print(f"  {'circle (Mcx514Trapezoidal + Arc)':26} max {max(circle_counts):4}, mean "
+        print(f"  {'circle, Mcx514Trapezoidal':26} max {max(circle_counts):4}, mean "
               f"{statistics.fmean(circle_counts):6.1f} instructions ({len(circle_counts)} cycles)")
     except ProbeFailure as failure:
         print(f"error: the probe failed: {failure}", file=sys.stderr)
@@ -718,8 +829,12 @@ def main() -> int:
     stepping_ok = within("one step of SCurve", all_steps, args.step_budget, "", "cycles")
     for name, counts_ in others.items():
         stepping_ok &= within(f"one step of {name}", counts_, args.step_budget, "", "cycles")
-    stepping_ok &= within("one cycle of a circular interpolation", circle_counts, args.circle_budget, "", "cycles")
-    status = 0 if planning_ok and stepping_ok else 1
+    lines_ok = True
+    for name, counts_ in lines.items():
+        lines_ok &= within(f"one cycle of a 3-axis line driven by {name}", counts_, line_budgets.get(name), "",
+                           "cycles")
+    circles_ok = within("one cycle of a circular interpolation", circle_counts, args.circle_budget, "", "cycles")
+    status = 0 if planning_ok and stepping_ok and lines_ok and circles_ok else 1
     return status
 
 

@@ -6,6 +6,8 @@
 //! registers before anything runs, and every mistake reported as one line naming the option and
 //! the value given (exit status 2).
 
+pub mod mcx514;
+
 use std::collections::BTreeMap;
 use std::ffi::OsString;
 
@@ -163,6 +165,8 @@ impl Options {
 pub enum Request {
     Help,
     Run(Options),
+    /// The `mcx514` mode: an interpolation, with options of its own.
+    Mcx514(mcx514::Options),
 }
 
 /// A one-line message about the command line.
@@ -238,18 +242,21 @@ fn parse_event(mode: Mode, text: &str) -> Result<Event, Usage> {
     })
 }
 
-fn mode_of(word: &str) -> Result<Mode, Usage> {
+/// The mode word: one of the one-axis modes, or `mcx514`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum ModeWord {
+    Profile(Mode),
+    Mcx514,
+}
+
+fn mode_of(word: &str) -> Result<ModeWord, Usage> {
     match word {
-        "velocity" => Ok(Mode::Velocity),
-        "trapezoidal" => Ok(Mode::Trapezoidal),
-        "scurve" => Ok(Mode::Scurve),
-        "mcx514" => Err(
-            "MODE 'mcx514': the MCX514 generators (SPEC §12) are not in this \
-                         version; velocity, trapezoidal or scurve"
-                .into(),
-        ),
+        "velocity" => Ok(ModeWord::Profile(Mode::Velocity)),
+        "trapezoidal" => Ok(ModeWord::Profile(Mode::Trapezoidal)),
+        "scurve" => Ok(ModeWord::Profile(Mode::Scurve)),
+        "mcx514" => Ok(ModeWord::Mcx514),
         _ => Err(format!(
-            "MODE '{word}': not a mode (velocity, trapezoidal or scurve)"
+            "MODE '{word}': not a mode (velocity, trapezoidal, scurve or mcx514)"
         )),
     }
 }
@@ -277,16 +284,23 @@ pub fn parse(program: Program, arguments: Vec<OsString>) -> Result<Request, Usag
                 continue;
             }
         };
+        // Known to some mode: which mode takes it is checked once the mode is known.
         let known = matches!(name.as_str(), "--event" | "--cycles")
             || name
                 .strip_prefix("--")
                 .is_some_and(|n| Key::from_name(n).is_some())
+            || mcx514::OPTIONS.contains(&name.as_str())
             || match program {
                 Program::Table => matches!(name.as_str(), "--every" | "--format"),
                 Program::Plot => matches!(name.as_str(), "--output" | "--cycle-time"),
             };
         if !known {
             return Err(format!("{name}: unknown option (see --help)"));
+        }
+        if name == "--no-decel" {
+            // A flag: it takes no value.
+            words.push((name, String::new()));
+            continue;
         }
         let text = parser
             .value()
@@ -295,8 +309,12 @@ pub fn parse(program: Program, arguments: Vec<OsString>) -> Result<Request, Usag
             .map_err(|text| format!("{name} '{}': not valid text", text.to_string_lossy()))?;
         words.push((name, text));
     }
-    let mode =
-        mode.ok_or("MODE: missing (velocity, trapezoidal or scurve; see --help)".to_owned())?;
+    let mode = match mode
+        .ok_or("MODE: missing (velocity, trapezoidal, scurve or mcx514; see --help)".to_owned())?
+    {
+        ModeWord::Mcx514 => return mcx514::parse(program, words).map(Request::Mcx514),
+        ModeWord::Profile(mode) => mode,
+    };
     let mut options = Options {
         mode,
         values: BTreeMap::new(),
@@ -314,6 +332,20 @@ pub fn parse(program: Program, arguments: Vec<OsString>) -> Result<Request, Usag
                 return Err(format!("{name} '{text}': given twice"));
             }
             seen.push(name.clone());
+        }
+        if mcx514::OPTIONS.contains(&name.as_str())
+            && !(name == "--event" || program == Program::Plot && name == "--cycle-time")
+        {
+            // A flag has no value to show.
+            let given = if name == "--no-decel" {
+                name.clone()
+            } else {
+                format!("{name} '{text}'")
+            };
+            return Err(format!(
+                "{given}: not used in {} mode (see --help)",
+                mode.name()
+            ));
         }
         match name.as_str() {
             "--event" => options.events.push(parse_event(mode, &text)?),

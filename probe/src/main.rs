@@ -18,6 +18,10 @@
 //!   the same for `Trapezoidal`; the setup is the measured "starting a move" (it plans).
 //! - `probe_trapezoid_command(command, value)`: a stop or a new destination in motion, so the
 //!   cycles that follow can be counted too.
+//! - `probe_line_setup(words)`, `probe_line_step_<profile>()`, `probe_line_complete()`: a 3-axis
+//!   linear interpolation (SPEC §12.3) driven by one of the profiles (`mcx514` the MCX514
+//!   trapezoid, `trapezoid` the crate's `Trapezoidal`), stepped one cycle per call through
+//!   `LinearInterpolation::step`: the measured cost is the profile plus the geometry (SPEC §16).
 //! - `probe_circle_setup(words)` (centre x, y, finish x, y, 1 for counter-clockwise, SV, DV, AC,
 //!   DC (MCX514 registers), the manual deceleration point, the cycle time in µs),
 //!   `probe_circle_step()`, `probe_circle_complete()`: an MCX514 circular interpolation, the
@@ -33,13 +37,15 @@ use core::mem::MaybeUninit;
 use core::panic::PanicInfo;
 use core::sync::atomic::{AtomicU32, Ordering};
 
-use profilegen::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
 use profilegen::format::juno::{Acceleration, TargetVelocity};
+use profilegen::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
 use profilegen::format::{mcx514, CycleTime};
-use profilegen::interpolation::{Arc, ArcWalk, CircularDriving, Direction};
+use profilegen::interpolation::{
+    Arc, ArcWalk, CircularDriving, Direction, InterpolationState, Line, LinearInterpolation,
+};
 use profilegen::{
-    DecelerationMode, Error, Mcx514Trapezoidal, ProfileGenerator, SCurve, ScurveParameters, Trapezoidal, TrapezoidalParameters,
-    VelocityContouring, VelocityParameters,
+    DecelerationMode, Error, Mcx514Parameters, Mcx514Trapezoidal, ProfileGenerator, SCurve,
+    ScurveParameters, Trapezoidal, TrapezoidalParameters, VelocityContouring, VelocityParameters,
 };
 
 #[path = "../../benches/common/moves.rs"]
@@ -278,6 +284,158 @@ pub unsafe extern "C" fn probe_trapezoid_command(command: u32, value: i32) {
             let _ = TargetVelocity::from_bits(value).and_then(|v| axis.set_max_velocity(v));
         }
     }
+}
+
+/// The 3-axis line being stepped and its driving profile (one slot per profile kind).
+static LINE_MCX514: Other<LinearInterpolation<'static, Mcx514Trapezoidal, 3>> =
+    Other(UnsafeCell::new(MaybeUninit::uninit()));
+static LINE_MCX514_PROFILE: Other<Mcx514Trapezoidal> =
+    Other(UnsafeCell::new(MaybeUninit::uninit()));
+static LINE_TRAPEZOID: Other<LinearInterpolation<'static, Trapezoidal, 3>> =
+    Other(UnsafeCell::new(MaybeUninit::uninit()));
+static LINE_TRAPEZOID_PROFILE: Other<Trapezoidal> = Other(UnsafeCell::new(MaybeUninit::uninit()));
+/// Which slot the last successful `probe_line_setup` filled: 0 MCX514, 1 trapezoid.
+static LINE_KIND: AtomicU32 = AtomicU32::new(u32::MAX);
+
+/// Sets up the stepped 3-axis line from `words`: `[0]` the profile (0 the MCX514 trapezoid,
+/// 1 the crate's `Trapezoidal`), `[1..4]` the finish point (pulses, `i32` bits), then
+///
+/// - MCX514: `[4]` the cycle time in µs, `[5]` SV, `[6]` DV (pps), `[7]` AC, `[8]` DC (pps/s),
+///   `[9]` the deceleration mode (0 automatic, 1 manual at `[10]`, 2 disabled);
+/// - trapezoid: `[4]` maximum velocity (16.16), `[5]` acceleration, `[6]` deceleration (8.24),
+///   `[7]` starting velocity (16.16), raw bits; destination: the line's steps.
+///
+/// Returns the line's steps, or `u64::MAX` when refused.
+///
+/// # Safety
+/// `words` points to 11 readable, aligned words.
+#[no_mangle]
+pub unsafe extern "C" fn probe_line_setup(words: *const u32) -> u64 {
+    // SAFETY: the caller provides 11 words.
+    let word = |i: usize| unsafe { words.add(i).read() };
+    let line = match Line::from_pulses([word(1) as i32, word(2) as i32, word(3) as i32]) {
+        Ok(line) => line,
+        Err(_) => return REFUSED,
+    };
+    let steps = u64::from(line.steps());
+    match word(0) {
+        0 => {
+            let profile = || -> Result<Mcx514Trapezoidal, Error> {
+                let cycle = CycleTime::from_seconds(f64::from(word(4)) * 1e-6)?;
+                let deceleration_mode = match word(9) {
+                    0 => DecelerationMode::Automatic,
+                    1 => DecelerationMode::Manual(mcx514::ManualDecelerationPoint::from_bits(
+                        word(10),
+                    )?),
+                    _ => DecelerationMode::Disabled,
+                };
+                Mcx514Trapezoidal::new(
+                    Mcx514Parameters {
+                        pulses: line.steps(),
+                        initial_speed: mcx514::InitialSpeed::from_bits(word(5))?,
+                        drive_speed: mcx514::DriveSpeed::from_bits(word(6))?,
+                        acceleration: mcx514::Acceleration::from_bits(word(7))?,
+                        deceleration: mcx514::Deceleration::from_bits(word(8))?,
+                        deceleration_mode,
+                    },
+                    cycle,
+                )
+            };
+            let Ok(profile) = profile() else {
+                return REFUSED;
+            };
+            // SAFETY: single-threaded; the profile lives in its static for as long as the line
+            // that borrows it (both are replaced together, by the next set-up).
+            let profile = unsafe { (*LINE_MCX514_PROFILE.0.get()).write(profile) };
+            // SAFETY: as above.
+            unsafe { (*LINE_MCX514.0.get()).write(line.drive(profile)) };
+            LINE_KIND.store(0, Ordering::Relaxed);
+        }
+        _ => {
+            let profile = || -> Result<Trapezoidal, Error> {
+                Trapezoidal::new(TrapezoidalParameters {
+                    destination: line.steps() as i32,
+                    max_velocity: TargetVelocity::from_bits(word(4) as i32)?,
+                    acceleration: Acceleration::from_bits(word(5))?,
+                    deceleration: Acceleration::from_bits(word(6))?,
+                    start_velocity: TargetVelocity::from_bits(word(7) as i32)?,
+                })
+            };
+            let Ok(profile) = profile() else {
+                return REFUSED;
+            };
+            // SAFETY: as for the MCX514 slots.
+            let profile = unsafe { (*LINE_TRAPEZOID_PROFILE.0.get()).write(profile) };
+            // SAFETY: as above.
+            unsafe { (*LINE_TRAPEZOID.0.get()).write(line.drive(profile)) };
+            LINE_KIND.store(1, Ordering::Relaxed);
+        }
+    }
+    steps
+}
+
+/// Where each cycle's axes go, as a caller would output them to its pulse generators.
+static LINE_AXES: Other<[i32; 3]> = Other(UnsafeCell::new(MaybeUninit::uninit()));
+
+/// One cycle's result handed on: every axis stored with a volatile write, as to a peripheral's
+/// registers (a plain store to a static nothing reads would be optimized away, and the geometry
+/// with it), the driving position returned.
+#[inline(always)]
+fn output(state: InterpolationState<3>) -> i64 {
+    let axes = LINE_AXES.0.get().cast::<i32>();
+    for (i, axis) in state.axes.into_iter().enumerate() {
+        // SAFETY: three aligned words of a static; single-threaded.
+        unsafe { axes.add(i).write_volatile(axis) };
+    }
+    state.driving.position.to_bits()
+}
+
+/// Advances the MCX514-driven line one cycle: `LinearInterpolation::step`.
+///
+/// # Safety
+/// `probe_line_setup` succeeded before with profile 0.
+#[no_mangle]
+pub unsafe extern "C" fn probe_line_step_mcx514() -> i64 {
+    // SAFETY: initialized by probe_line_setup (the caller's contract); single-threaded.
+    let line = unsafe { (*LINE_MCX514.0.get()).assume_init_mut() };
+    output(line.step())
+}
+
+/// Advances the trapezoid-driven line one cycle: `LinearInterpolation::step`.
+///
+/// # Safety
+/// `probe_line_setup` succeeded before with profile 1.
+#[no_mangle]
+pub unsafe extern "C" fn probe_line_step_trapezoid() -> i64 {
+    // SAFETY: initialized by probe_line_setup (the caller's contract); single-threaded.
+    let line = unsafe { (*LINE_TRAPEZOID.0.get()).assume_init_mut() };
+    output(line.step())
+}
+
+/// 1 when the line set up last is complete, else 0; the axes' positions in `out[0..3]`.
+///
+/// # Safety
+/// `probe_line_setup` succeeded before; `out` points to 3 writable, aligned words.
+#[no_mangle]
+pub unsafe extern "C" fn probe_line_complete(out: *mut i32) -> u32 {
+    // SAFETY: initialized by probe_line_setup for the kind it recorded; single-threaded.
+    let (complete, axes) = unsafe {
+        match LINE_KIND.load(Ordering::Relaxed) {
+            0 => {
+                let line = (*LINE_MCX514.0.get()).assume_init_ref();
+                (line.is_complete(), line.state().axes)
+            }
+            _ => {
+                let line = (*LINE_TRAPEZOID.0.get()).assume_init_ref();
+                (line.is_complete(), line.state().axes)
+            }
+        }
+    };
+    for (i, axis) in axes.iter().enumerate() {
+        // SAFETY: the caller provides 3 words.
+        unsafe { out.add(i).write(*axis) };
+    }
+    u32::from(complete)
 }
 
 /// A circular interpolation: the driving profile and the walk along the arc.
