@@ -238,6 +238,7 @@ impl Mcx514Trapezoidal {
 }
 
 impl ProfileGenerator for Mcx514Trapezoidal {
+    #[inline]
     fn step(&mut self) -> State {
         let before = self.state.velocity.to_bits();
         let position = self.state.position.to_bits();

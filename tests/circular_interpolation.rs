@@ -453,3 +453,37 @@ proptest! {
         prop_assert_eq!(before, finish);
     }
 }
+
+#[test]
+fn a_walk_jumps_back_and_forth_in_o1() {
+    // Forward, back to the start, past octant ends in both directions: always the evaluation
+    // from scratch.
+    for (centre, direction) in [
+        ([10_000, 0], Direction::CounterClockwise),
+        ([3, 4], Direction::Clockwise),
+        ([-1, 0], Direction::CounterClockwise),
+        ([700, -300], Direction::Clockwise),
+    ] {
+        let arc = Arc::from_pulses(centre, [0, 0], direction).unwrap();
+        let steps = arc.steps();
+        let mut walk = arc.walk();
+        for target in [
+            steps / 3,
+            0,
+            steps,
+            1,
+            steps / 2,
+            steps / 8,
+            0,
+            steps - 1,
+            2,
+            steps,
+        ] {
+            let point = walk.advance_to(target);
+            let mut fresh = arc.walk();
+            assert_eq!(point, fresh.advance_to(target), "{centre:?} at {target}");
+            assert_eq!(walk.octant(), fresh.octant(), "{centre:?} at {target}");
+            assert_eq!(walk.octant(), arc.octant_at(target));
+        }
+    }
+}

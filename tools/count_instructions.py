@@ -579,7 +579,7 @@ def measure_lines(probe: Probe, moves: int) -> dict[str, list[int]]:
 
 
 # The manual's circle (reference 003): r = 10,000 full turn, SV 500, DV 20,000 pps, AC = DC
-# 65,000 pps/s, DP 53,493, at a 1 ms cycle. Words as `probe_circle_setup` takes them.
+# 65,000 pps/s, DP 53,493, at a 1 ms cycle: centre, finish, CCW, then the MCX514 registers.
 MANUAL_CIRCLE = (10_000, 0, 0, 0, 1, 500, 20_000, 65_000, 65_000, 53_493, 1_000)
 
 
@@ -587,9 +587,9 @@ def random_circles(n: int, seed: int = 15) -> list[tuple[int, ...]]:
     """Deterministic MCX514 circles of about 1,000 cycles each: a radius log-uniform in 1 .. 2^27
     at a random angle (the start exactly on the circle: the centre is rounded, the radius follows),
     a full, half or quarter turn in either direction (the opposite and the quarter-turn points of
-    an exact start are exact too), the cycle time and DV chosen so that about a thousand steps'
-    worth of cycles covers the arc, SV a tenth of DV, AC = DC for a 100-cycle ramp, and the
-    manual deceleration point the continuous-time ramp's pulses before the end."""
+    an exact start are exact too), the cycle time and DV chosen so that about a thousand cycles
+    cover the arc, SV a tenth of DV, AC = DC for a 100-cycle ramp, and the manual deceleration
+    point the continuous-time ramp's pulses before the end."""
     import math
     import random
     rng = random.Random(seed)
@@ -618,24 +618,37 @@ def random_circles(n: int, seed: int = 15) -> list[tuple[int, ...]]:
     return circles
 
 
-def measure_circles(probe: Probe, moves: int) -> list[int]:
-    """Per-cycle counts of the circular interpolation (profile plus arc), the manual's circle and
-    `moves` random ones, each to its end."""
-    counts = []
+def as_trapezoid(circle: tuple[int, ...]) -> tuple[int, ...]:
+    """The same circle driven by the crate's `Trapezoidal`: DV·T as 16.16, AC·T² as 8.24."""
+    *geometry, initial, drive, acceleration, _, _, cycle_us = circle
+    cycle = cycle_us * 1e-6
+    velocity = max(1, min(2**31 - 1, round(drive * cycle * 65536)))
+    rate = max(1, min(2**31 - 1, round(acceleration * cycle * cycle * 2**24)))
+    return (*geometry, 1, velocity, rate, 0, 0, 0, 0)
+
+
+def measure_circles(probe: Probe, moves: int) -> dict[str, list[int]]:
+    """Per-cycle counts of the circular interpolation (profile plus arc) per driving profile: the
+    manual's circle and `moves` random ones, each to its end (a full turn back on its start)."""
+    counts: dict[str, list[int]] = {"mcx514": [], "trapezoid": []}
     for circle in [MANUAL_CIRCLE] + random_circles(moves):
-        probe.uc.mem_write(SCRATCH_PAGE, struct.pack("<11I", *(w & 0xFFFF_FFFF for w in circle)))
-        if probe.call("probe_circle_setup", SCRATCH_PAGE).r0:
-            raise ProbeFailure(f"circle refused: {circle}")
-        for _ in range(50_000):
-            counts.append(probe.call("probe_circle_step").instructions)
-            if probe.call("probe_circle_complete").r0:
-                break
-        else:
-            raise ProbeFailure(f"circle {circle} did not end in 50,000 cycles")
-        end = probe.call("probe_circle_step").u64
-        counts.append(probe.call("probe_circle_step").instructions)
-        if circle[2:4] == (0, 0) and end != 0:
-            raise ProbeFailure(f"full circle {circle} ended at {end:#x}, not at its start")
+        *geometry, initial, drive, acceleration, deceleration, point, cycle_us = circle
+        mcx514 = (*geometry, 0, initial, drive, acceleration, deceleration, point, cycle_us)
+        for name, words in (("mcx514", mcx514), ("trapezoid", as_trapezoid(circle))):
+            kind = 0 if name == "mcx514" else 1
+            probe.uc.mem_write(SCRATCH_PAGE, struct.pack("<12I", *(w & 0xFFFF_FFFF for w in words)))
+            if probe.call("probe_circle_setup", SCRATCH_PAGE).r0:
+                raise ProbeFailure(f"circle refused: {words}")
+            for _ in range(200_000):
+                counts[name].append(probe.call(f"probe_circle_step_{name}").instructions)
+                if probe.call("probe_circle_complete", kind).r0:
+                    break
+            else:
+                raise ProbeFailure(f"circle {words} did not end in 200,000 cycles")
+            counts[name].append(probe.call(f"probe_circle_step_{name}").instructions)
+            end = probe.call("probe_circle_axes").u64
+            if circle[2:4] == (0, 0) and end != 0:
+                raise ProbeFailure(f"full circle {words} ended at {end:#x}, not at its start")
     return counts
 
 
@@ -713,8 +726,9 @@ def main() -> int:
                              "executes more than N instructions (profile plus geometry); repeatable")
     parser.add_argument("--circle-moves", type=int, default=20,
                         help="random MCX514 circles stepped to the end, besides the manual's (default %(default)s)")
-    parser.add_argument("--circle-budget", type=int,
-                        help="fail when a cycle of a circular interpolation executes more instructions")
+    parser.add_argument("--circle-budget", action="append", default=[], metavar="PROFILE=N",
+                        help="fail when a cycle of a circle driven by PROFILE (mcx514, trapezoid) executes "
+                             "more than N instructions; repeatable")
     parser.add_argument("--functions", type=int, default=8,
                         help="functions listed for the worst plan (default %(default)s)")
     parser.add_argument("--top", type=int, default=5, help="the most expensive plans listed (default 5)")
@@ -804,9 +818,10 @@ def main() -> int:
         print(f"  ({time.monotonic() - lines_started:.1f} s)")
         print(f"== MCX514 circular interpolation, one call per cycle (profile and arc; the manual's "
               f"circle and {args.circle_moves} random ones, each to its end)")
-        circle_counts = measure_circles(probe, args.circle_moves)
-        print(f"  {'circle, Mcx514Trapezoidal':26} max {max(circle_counts):4}, mean "
-              f"{statistics.fmean(circle_counts):6.1f} instructions ({len(circle_counts)} cycles)")
+        circles = measure_circles(probe, args.circle_moves)
+        for name, counts_ in circles.items():
+            print(f"  {'circle, ' + name:26} max {max(counts_):4}, mean {statistics.fmean(counts_):6.1f} "
+                  f"instructions ({len(counts_)} cycles)")
     except ProbeFailure as failure:
         print(f"error: the probe failed: {failure}", file=sys.stderr)
         return 2
@@ -833,7 +848,14 @@ def main() -> int:
     for name, counts_ in lines.items():
         lines_ok &= within(f"one cycle of a 3-axis line driven by {name}", counts_, line_budgets.get(name), "",
                            "cycles")
-    circles_ok = within("one cycle of a circular interpolation", circle_counts, args.circle_budget, "", "cycles")
+    circle_budgets: dict[str, int] = {}
+    for budget in args.circle_budget:
+        name, _, value = budget.partition("=")
+        circle_budgets[name] = int(value)
+    circles_ok = True
+    for name, counts_ in circles.items():
+        circles_ok &= within(f"one cycle of a circle driven by {name}", counts_, circle_budgets.get(name), "",
+                             "cycles")
     status = 0 if planning_ok and stepping_ok and lines_ok and circles_ok else 1
     return status
 

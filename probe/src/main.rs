@@ -22,10 +22,10 @@
 //!   linear interpolation (SPEC §12.3) driven by one of the profiles (`mcx514` the MCX514
 //!   trapezoid, `trapezoid` the crate's `Trapezoidal`), stepped one cycle per call through
 //!   `LinearInterpolation::step`: the measured cost is the profile plus the geometry (SPEC §16).
-//! - `probe_circle_setup(words)` (centre x, y, finish x, y, 1 for counter-clockwise, SV, DV, AC,
-//!   DC (MCX514 registers), the manual deceleration point, the cycle time in µs),
-//!   `probe_circle_step()`, `probe_circle_complete()`: an MCX514 circular interpolation, the
-//!   arc driven by `Mcx514Trapezoidal`; a step is the profile's cycle plus the arc's O(1) jump.
+//! - `probe_circle_setup(words)`, `probe_circle_step_<profile>()`, `probe_circle_complete(p)`,
+//!   `probe_circle_axes()`: an MCX514 circular interpolation (SPEC §12.4) driven by
+//!   `Mcx514Trapezoidal` or the crate's `Trapezoidal`; a step is the profile's cycle plus the
+//!   arc's O(1) jump (SPEC §16's 150 is for the two together).
 //! - `probe_selftest_panic(1)`, `probe_selftest_runaway()`: a panic and an endless loop, so the
 //!   harness can check that it catches both.
 #![no_std]
@@ -439,88 +439,157 @@ pub unsafe extern "C" fn probe_line_complete(out: *mut i32) -> u32 {
 }
 
 /// A circular interpolation: the driving profile and the walk along the arc.
-struct Circle {
-    profile: Mcx514Trapezoidal,
+struct Circle<G> {
+    profile: G,
     walk: ArcWalk,
 }
 
-static CIRCLE: Other<Circle> = Other(UnsafeCell::new(MaybeUninit::uninit()));
+static CIRCLE_MCX514: Other<Circle<Mcx514Trapezoidal>> =
+    Other(UnsafeCell::new(MaybeUninit::uninit()));
+static CIRCLE_TRAPEZOID: Other<Circle<Trapezoidal>> = Other(UnsafeCell::new(MaybeUninit::uninit()));
 
-/// Sets up the stepped circle from `words[0..11]` (see the crate docs); 0 on success, 1 when
-/// refused.
+/// Sets up a stepped circle from `words`: `[0..2]` the centre, `[2..4]` the finish point (pulses
+/// relative to the start, `i32` bits), `[4]` 1 for counter-clockwise, then the profile `[5]`:
+///
+/// - 0, the MCX514 trapezoid: `[6]` SV, `[7]` DV (pps), `[8]` AC, `[9]` DC (pps/s), `[10]` the
+///   manual deceleration point, `[11]` the cycle time in µs;
+/// - 1, the crate's `Trapezoidal`: `[6]` maximum velocity (16.16), `[7]` acceleration, `[8]`
+///   deceleration (8.24), raw bits; the destination is the arc's steps.
+///
+/// Returns 0 on success, 1 when refused.
 ///
 /// # Safety
-/// `words` points to 11 readable, aligned words.
+/// `words` points to 12 readable, aligned words.
 #[no_mangle]
 pub unsafe extern "C" fn probe_circle_setup(words: *const u32) -> u32 {
-    // SAFETY: the caller provides 11 words.
+    // SAFETY: the caller provides 12 words.
     let word = |i: usize| unsafe { words.add(i).read() };
-    let circle = || -> Result<Circle, Error> {
-        let direction = if word(4) == 1 {
-            Direction::CounterClockwise
-        } else {
-            Direction::Clockwise
+    let direction = if word(4) == 1 {
+        Direction::CounterClockwise
+    } else {
+        Direction::Clockwise
+    };
+    let Ok(arc) = Arc::from_pulses(
+        [word(0) as i32, word(1) as i32],
+        [word(2) as i32, word(3) as i32],
+        direction,
+    ) else {
+        return 1;
+    };
+    if word(5) == 0 {
+        let profile = || -> Result<Mcx514Trapezoidal, Error> {
+            let cycle = CycleTime::from_seconds(f64::from(word(11)) * 1e-6)?;
+            arc.mcx514_profile(
+                CircularDriving {
+                    initial_speed: mcx514::InitialSpeed::from_bits(word(6))?,
+                    drive_speed: mcx514::DriveSpeed::from_bits(word(7))?,
+                    acceleration: mcx514::Acceleration::from_bits(word(8))?,
+                    deceleration: mcx514::Deceleration::from_bits(word(9))?,
+                    jerk: None,
+                    deceleration_jerk: None,
+                    deceleration_mode: DecelerationMode::Manual(
+                        mcx514::ManualDecelerationPoint::from_bits(word(10))?,
+                    ),
+                },
+                cycle,
+            )
         };
-        let arc = Arc::from_pulses(
-            [word(0) as i32, word(1) as i32],
-            [word(2) as i32, word(3) as i32],
-            direction,
-        )?;
-        let cycle = CycleTime::from_seconds(f64::from(word(10)) * 1e-6)?;
-        let profile = arc.mcx514_profile(
-            CircularDriving {
-                initial_speed: mcx514::InitialSpeed::from_bits(word(5))?,
-                drive_speed: mcx514::DriveSpeed::from_bits(word(6))?,
-                acceleration: mcx514::Acceleration::from_bits(word(7))?,
-                deceleration: mcx514::Deceleration::from_bits(word(8))?,
-                jerk: None,
-                deceleration_jerk: None,
-                deceleration_mode: DecelerationMode::Manual(
-                    mcx514::ManualDecelerationPoint::from_bits(word(9))?,
-                ),
-            },
-            cycle,
-        )?;
-        Ok(Circle {
+        let Ok(profile) = profile() else {
+            return 1;
+        };
+        let circle = Circle {
             profile,
             walk: arc.walk(),
-        })
-    };
-    match circle() {
-        Ok(circle) => {
-            // SAFETY: single-threaded; no reference to the slot outlives a call.
-            unsafe { (*CIRCLE.0.get()).write(circle) };
-            0
-        }
-        Err(_) => 1,
+        };
+        // SAFETY: single-threaded; no reference to the slot outlives a call.
+        unsafe { (*CIRCLE_MCX514.0.get()).write(circle) };
+    } else {
+        let profile = || -> Result<Trapezoidal, Error> {
+            Trapezoidal::new(TrapezoidalParameters {
+                destination: i32::try_from(arc.steps()).unwrap_or(i32::MAX),
+                max_velocity: TargetVelocity::from_bits(word(6) as i32)?,
+                acceleration: Acceleration::from_bits(word(7))?,
+                deceleration: Acceleration::from_bits(word(8))?,
+                start_velocity: TargetVelocity::ZERO,
+            })
+        };
+        let Ok(profile) = profile() else {
+            return 1;
+        };
+        let circle = Circle {
+            profile,
+            walk: arc.walk(),
+        };
+        // SAFETY: as above.
+        unsafe { (*CIRCLE_TRAPEZOID.0.get()).write(circle) };
     }
+    0
 }
 
-/// Advances the stepped circle one cycle: the profile's step and the arc's jump to the step it
-/// reached (what `CircularInterpolation::step` does); returns both axes (x in the low word).
-///
-/// # Safety
-/// `probe_circle_setup` succeeded before.
-#[no_mangle]
-pub unsafe extern "C" fn probe_circle_step() -> i64 {
-    // SAFETY: initialized by probe_circle_setup (the caller's contract); single-threaded.
-    let circle = unsafe { (*CIRCLE.0.get()).assume_init_mut() };
+/// One cycle of a circle: the profile's step and the arc's jump to the step it reached (what
+/// `CircularInterpolation::step` does), both axes stored with volatile writes as `output` does
+/// for the line; returns the driving position.
+#[inline(always)]
+fn circle_step<G: ProfileGenerator>(circle: &mut Circle<G>) -> i64 {
     let driving = circle.profile.step();
-    // The whole steps: the position's integer part, never negative for this profile.
+    // The whole steps: the position's integer part, never negative for these profiles.
     let steps = (driving.position.to_bits() >> 32).max(0) as u64;
-    let [x, y] = circle.walk.advance_to(steps);
-    i64::from(x as u32) | (i64::from(y) << 32)
+    let axes = circle.walk.advance_to(steps);
+    let out = LINE_AXES.0.get().cast::<i32>();
+    for (i, axis) in axes.into_iter().enumerate() {
+        // SAFETY: aligned words of a static (three, two used); single-threaded.
+        unsafe { out.add(i).write_volatile(axis) };
+    }
+    driving.position.to_bits()
 }
 
-/// 1 when the stepped circle's profile is complete, else 0.
+/// Advances the MCX514-driven circle one cycle.
 ///
 /// # Safety
-/// `probe_circle_setup` succeeded before.
+/// `probe_circle_setup` succeeded before with profile 0.
 #[no_mangle]
-pub unsafe extern "C" fn probe_circle_complete() -> u32 {
+pub unsafe extern "C" fn probe_circle_step_mcx514() -> i64 {
     // SAFETY: initialized by probe_circle_setup (the caller's contract); single-threaded.
-    let circle = unsafe { (*CIRCLE.0.get()).assume_init_ref() };
-    u32::from(circle.profile.is_complete())
+    circle_step(unsafe { (*CIRCLE_MCX514.0.get()).assume_init_mut() })
+}
+
+/// Advances the trapezoid-driven circle one cycle.
+///
+/// # Safety
+/// `probe_circle_setup` succeeded before with profile 1.
+#[no_mangle]
+pub unsafe extern "C" fn probe_circle_step_trapezoid() -> i64 {
+    // SAFETY: initialized by probe_circle_setup (the caller's contract); single-threaded.
+    circle_step(unsafe { (*CIRCLE_TRAPEZOID.0.get()).assume_init_mut() })
+}
+
+/// 1 when the stepped circle's profile (0 MCX514, 1 trapezoid) is complete, else 0; the axes
+/// are in `LINE_AXES`.
+///
+/// # Safety
+/// `probe_circle_setup` succeeded before with that profile.
+#[no_mangle]
+pub unsafe extern "C" fn probe_circle_complete(profile: u32) -> u32 {
+    // SAFETY: initialized by probe_circle_setup (the caller's contract); single-threaded.
+    let complete = if profile == 0 {
+        unsafe { (*CIRCLE_MCX514.0.get()).assume_init_ref() }
+            .profile
+            .is_complete()
+    } else {
+        unsafe { (*CIRCLE_TRAPEZOID.0.get()).assume_init_ref() }
+            .profile
+            .is_complete()
+    };
+    u32::from(complete)
+}
+
+/// The stepped circle's axes after the last step: x in the low word, y in the high.
+#[no_mangle]
+pub extern "C" fn probe_circle_axes() -> u64 {
+    let axes = LINE_AXES.0.get().cast::<i32>();
+    // SAFETY: aligned words of a static, written by the last step; single-threaded.
+    let (x, y) = unsafe { (axes.read_volatile(), axes.add(1).read_volatile()) };
+    u64::from(x as u32) | (u64::from(y as u32) << 32)
 }
 
 /// Panics when `panic` is non-zero: the harness's check that a panic is caught and located.

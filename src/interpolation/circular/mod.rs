@@ -65,7 +65,7 @@ pub use walk::ArcWalk;
 
 use crate::format::mcx514::{Centre, FinishPoint};
 use crate::{Error, Range};
-use sqrt::round_sqrt;
+use sqrt::{round_sqrt, round_sqrt_shifted, shift_for};
 
 /// Which way round an arc goes, seen with X to the right and Y up.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -123,6 +123,11 @@ pub struct Arc {
     end: [i32; 2],
     /// R² = cx² + cy² < 2⁶¹.
     radius_squared: u64,
+    /// The even shift that puts R² into [2⁶⁰, 2⁶²) for the root (see `sqrt::shift_for`).
+    shift: u32,
+    /// Per traversal piece mod 8: whether X carries the long coordinate, and the signs of X and
+    /// Y (the octant's row of `FRAMES` for this direction).
+    frames: [(bool, [i32; 2]); 8],
     /// m: the last short coordinate of an octant; the steps of an inbound octant.
     inbound_steps: u32,
     /// D = f(m): the steps of an outbound octant.
@@ -176,14 +181,22 @@ impl Arc {
         }
         let inbound_steps = last_short_coordinate(radius_squared);
         let outbound_steps = round_sqrt(radius_squared - u64::from(inbound_steps).pow(2));
+        let counter_clockwise = direction == Direction::CounterClockwise;
+        let frames = core::array::from_fn(|piece| {
+            let octant = if counter_clockwise { piece } else { 7 - piece };
+            let (long_is_x, sign_x, sign_y) = FRAMES[octant];
+            (long_is_x, [sign_x, sign_y])
+        });
         let mut arc = Self {
             centre,
             finish,
             end: [0, 0],
             radius_squared,
+            shift: shift_for(radius_squared),
+            frames,
             inbound_steps,
             outbound_steps,
-            counter_clockwise: direction == Direction::CounterClockwise,
+            counter_clockwise,
             first_piece: 0,
             first_offset: 0,
             steps: 0,
@@ -338,7 +351,7 @@ impl Arc {
     /// The long and short coordinates `offset` steps into an outbound or inbound piece (0 … its
     /// steps): outbound s = offset, and past m only the diagonal step's end (m, m + 1); inbound
     /// s = m − offset. The long coordinate is f(s).
-    #[inline]
+    #[inline(always)]
     fn long_and_short(&self, outbound: bool, offset: u32) -> (u32, u32) {
         let m = self.inbound_steps;
         if outbound {
@@ -367,11 +380,12 @@ impl Arc {
         }
     }
 
-    /// f(s) = round(√(R² − s²)) for s ≤ m (so s² ≤ R²).
-    #[inline]
+    /// f(s) = round(√(R² − s²)) for s ≤ m (so R²/4 ≤ R² − s² ≤ R², the root's domain with
+    /// the circle's shift: m² < (R² + m)/2).
+    #[inline(always)]
     fn long_at(&self, short: u32) -> u32 {
         let short = u64::from(short);
-        round_sqrt(self.radius_squared - short * short)
+        round_sqrt_shifted(self.radius_squared.wrapping_sub(short * short), self.shift)
     }
 
     /// The position on a full circle traversed from the direction's first octant's start.

@@ -6,67 +6,81 @@
 //! in base b = 2¹⁵ keeps every quantity of the last stage inside 32 bits:
 //!
 //! ```text
-//! n normalized by an even shift into [2⁶⁰, 2⁶²):  n = h·b² + a₁·b + a₀,  h = ⌊n / 2³⁰⌋ ∈ [2³⁰, 2³²)
-//! s₁ = ⌊√h⌋ ∈ [2¹⁵, 2¹⁶),  r₁ = h − s₁² ≤ 2·s₁ < 2¹⁷
+//! n shifted by an even amount into [2⁵⁸, 2⁶²):  n = h·b² + a₁·b + a₀,  h = ⌊n / 2³⁰⌋ ∈ [2²⁸, 2³²)
+//! s₁ = ⌊√h⌋ ∈ [2¹⁴, 2¹⁶) (a table and one Newton step),  r₁ = h − s₁² ≤ 2·s₁ < 2¹⁷
 //! (q, u) = divmod(r₁·b + a₁, 2·s₁)     r₁·b + a₁ < 2¹⁷·2¹⁵ = 2³²; q ≤ b
-//! s = s₁·b + q,  r = u·b + a₀ − q²;    if r < 0 { s −= 1 }   (at most once: h ≥ b²/4)
+//! s = s₁·b + q,  r = u·b + a₀ − q²;    if r < 0 { s −= 1 }   (at most once: s₁ ≥ b/2)
 //! ```
 //!
 //! and `u·b + a₀ < 2³²`, `q² ≤ 2³⁰`, so the sign test is a 32-bit comparison too. Undoing the
 //! normalization (a shift of the root by half the shift) keeps the floor: ⌊⌊2ʲ·x⌋ / 2ʲ⌋ = ⌊x⌋.
 
+use core::num::NonZeroU32;
+
 /// ⌊√n⌋ for n < 2⁶², exactly; see the [module docs](self).
-#[inline]
 pub(crate) fn isqrt(n: u64) -> u32 {
     debug_assert!(n < 1 << 62, "isqrt: the input must be below 2^62");
     if n == 0 {
         return 0;
     }
-    // An even shift that puts the leading one at bit 60 or 61 (n < 2⁶² has ≥ 2 leading zeros).
-    let shift = (n.leading_zeros() - 2) & !1;
+    isqrt_shifted(n, shift_for(n))
+}
+
+/// The even shift that puts `top` (0 < top < 2⁶²) into [2⁶⁰, 2⁶²): every n in [top/4, top]
+/// then lands in [2⁵⁸, 2⁶²), the domain of [`isqrt_shifted`]. A circle computes it once for R²
+/// (the long axis's radicand R² − s² never falls below R²/4), so a cycle needs no `clz`.
+pub(crate) fn shift_for(top: u64) -> u32 {
+    top.leading_zeros().saturating_sub(2) & !1
+}
+
+/// ⌊√n⌋ for n·2^shift in [2⁵⁸, 2⁶²) (shift even): one Karatsuba step (module docs), with
+/// h = ⌊n·2^shift / 2³⁰⌋ in [2²⁸, 2³²), so s₁ = ⌊√h⌋ ≥ 2¹⁴ = b/2, Zimmermann's normalization,
+/// and every quantity of the step below 2³².
+#[inline(always)]
+pub(crate) fn isqrt_shifted(n: u64, shift: u32) -> u32 {
     let n = n << shift;
-    // h ∈ [2³⁰, 2³²): the cast keeps every bit.
+    // h < 2³²: the cast keeps every bit.
     let high = (n >> 30) as u32;
     let low = (n as u32) & ((1 << 30) - 1);
     let (digit_1, digit_0) = (low >> 15, low & 0x7fff);
     let root_high = isqrt_normalized(high);
-    // r₁ ≤ 2·s₁ < 2¹⁷, so r₁·2¹⁵ + a₁ < 2³²: one 32-bit division.
-    let remainder_high = high - root_high * root_high;
+    // r₁ ≤ 2·s₁ < 2¹⁷, so r₁·2¹⁵ + a₁ < 2³²: one 32-bit division. The divisor 2·s₁ ≥ 2¹⁵ is
+    // never zero; built as a `NonZeroU32` so the division needs no check.
+    let remainder_high = high.wrapping_sub(root_high.wrapping_mul(root_high));
     let numerator = (remainder_high << 15) | digit_1;
-    let divisor = root_high << 1;
+    let divisor = NonZeroU32::MIN.saturating_add((root_high << 1).wrapping_sub(1));
     let quotient = numerator / divisor;
-    let rest = numerator - quotient * divisor;
+    let rest = numerator.wrapping_sub(quotient.wrapping_mul(divisor.get()));
     // s < 2¹⁶·2¹⁵ + 2¹⁵ < 2³²; the remainder u·b + a₀ < 2³², and q ≤ 2¹⁵, so q² ≤ 2³⁰.
-    let root = (root_high << 15) + quotient;
-    let root = if (rest << 15) + digit_0 < quotient * quotient {
-        root - 1
-    } else {
-        root
-    };
+    let root = (root_high << 15).wrapping_add(quotient);
+    let root = root.wrapping_sub(u32::from(
+        (rest << 15).wrapping_add(digit_0) < quotient.wrapping_mul(quotient),
+    ));
     root >> (shift / 2)
 }
 
-/// ⌊√h⌋ for h ∈ [2³⁰, 2³²): a table of the top ten bits, one Newton step, one correction.
+/// ⌊√h⌋ for h ∈ [2²⁸, 2³²): a table of the top ten bits, one Newton step, one correction.
 ///
-/// For h in the table's bucket i (i·2²² ≤ h < (i + 1)·2²², 256 ≤ i < 1024) the start
-/// x₀ = ⌊√((i + 1)·2²² − 1)⌋ + 1 lies above √h by at most 2¹¹·(√(i + 1) − √i) + 1 ≤ 65; one
+/// For h in the table's bucket i (i·2²² ≤ h < (i + 1)·2²², 64 ≤ i < 1024) the start
+/// x₀ = ⌊√((i + 1)·2²² − 1)⌋ + 1 lies above √h by at most 2¹¹·(√(i + 1) − √i) + 1 < 129; one
 /// Newton step x₁ = ⌊(x₀ + ⌊h / x₀⌋) / 2⌋ stays at or above ⌊√h⌋ (the integer Newton step never
-/// undershoots) and within (x₀ − √h)² / (2·x₀) ≤ 65² / 2¹⁶ < 0.07 above √h, so x₁ is ⌊√h⌋ or one
-/// more, which x₁² > h tells.
-#[inline]
+/// undershoots) and less than (x₀ − √h)² / (2·√h) < 129² / 2¹⁵ < 0.51 above √h, so x₁ is ⌊√h⌋
+/// or one more, which x₁² > h tells.
+#[inline(always)]
 fn isqrt_normalized(high: u32) -> u32 {
-    let start = u32::from(ROOTS[(high >> 22) as usize - 256]) + 1;
-    let root = (start + high / start) >> 1;
+    // high >> 22 < 1024: always inside the table, no bounds check.
+    let start = NonZeroU32::MIN.saturating_add(u32::from(ROOTS[(high >> 22) as usize]));
+    let root = (start.get() + high / start) >> 1;
     // x₁ ≤ 2¹⁶: its square needs 33 bits.
     root - u32::from(u64::from(root) * u64::from(root) > u64::from(high))
 }
 
-/// ⌊√((i + 1)·2²² − 1)⌋ for i = 256 … 1023, computed when compiling.
-static ROOTS: [u16; 768] = {
-    let mut roots = [0u16; 768];
+/// ⌊√((i + 1)·2²² − 1)⌋ for i = 0 … 1023 (the first 64 unused), computed when compiling.
+static ROOTS: [u16; 1024] = {
+    let mut roots = [0u16; 1024];
     let mut i = 0;
-    while i < 768 {
-        let top = ((i as u64 + 257) << 22) - 1;
+    while i < 1024 {
+        let top = ((i as u64 + 1) << 22) - 1;
         // Below 2¹⁶: the cast is exact.
         roots[i] = top.isqrt() as u16;
         i += 1;
@@ -76,11 +90,21 @@ static ROOTS: [u16; 768] = {
 
 /// √n rounded to the nearest integer (there are no ties: (q + ½)² is never an integer), for
 /// n < 2⁶²: ⌊√n⌋ plus one when n − q² > q, i.e. n ≥ q² + q + ¼.
-#[inline]
 pub(crate) fn round_sqrt(n: u64) -> u32 {
-    let root = isqrt(n);
+    round_root(n, isqrt(n))
+}
+
+/// As [`round_sqrt`] for n·2^shift in [2⁵⁸, 2⁶²) (see [`shift_for`]).
+#[inline(always)]
+pub(crate) fn round_sqrt_shifted(n: u64, shift: u32) -> u32 {
+    round_root(n, isqrt_shifted(n, shift))
+}
+
+/// ⌊√n⌋ = `root` rounded to nearest: one more when n − q² > q.
+#[inline(always)]
+fn round_root(n: u64, root: u32) -> u32 {
     // q² ≤ n < 2⁶², and n − q² ≤ 2q < 2³²: u64 throughout.
-    let excess = n - u64::from(root) * u64::from(root);
+    let excess = n.wrapping_sub(u64::from(root) * u64::from(root));
     root + u32::from(excess > u64::from(root))
 }
 
@@ -124,10 +148,10 @@ mod tests {
 
     #[test]
     fn the_normalized_root_is_exact_at_every_bucket_edge_and_square() {
-        // Every square k² and its neighbours in [2³⁰, 2³²), and every bucket's ends.
-        for k in 32_768u64..=65_536 {
+        // Every square k² and its neighbours in [2²⁸, 2³²), and every bucket's ends.
+        for k in 16_384u64..=65_536 {
             for n in [k * k - 1, k * k, k * k + k, k * k + 2 * k] {
-                if (1 << 30..1 << 32).contains(&n) {
+                if (1 << 28..1 << 32).contains(&n) {
                     let n = n as u32;
                     assert!(
                         is_floor_root(u64::from(n), super::isqrt_normalized(n)),
@@ -136,7 +160,7 @@ mod tests {
                 }
             }
         }
-        for bucket in 256u64..1024 {
+        for bucket in 64u64..1024 {
             for n in [bucket << 22, ((bucket + 1) << 22) - 1] {
                 let n = n as u32;
                 assert!(
@@ -144,6 +168,27 @@ mod tests {
                     "{n}"
                 );
             }
+        }
+    }
+
+    #[test]
+    fn exact_with_a_circles_shift_over_a_quarter_of_its_range() {
+        // n in [top/4, top] with the shift of top, for tops of every size.
+        let mut state: u64 = 0x2545_f491_4f6c_dd1d;
+        for _ in 0..100_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let top = (state >> (2 + state % 61)).max(1);
+            let shift = super::shift_for(top);
+            let n = top - (state >> 7) % (top - top / 4 + 1);
+            let root = super::isqrt_shifted(n, shift);
+            assert!(
+                is_floor_root(n, root),
+                "isqrt_shifted({n}, {shift}) = {root}"
+            );
+            let nearest = super::round_sqrt_shifted(n, shift);
+            assert_eq!(nearest, round_sqrt(n), "{n}");
         }
     }
 

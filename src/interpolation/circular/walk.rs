@@ -1,6 +1,6 @@
 //! A cursor on an [`Arc`]: the step count, the octant it is in and the position there.
 
-use super::{Arc, Octant, FRAMES};
+use super::{Arc, Octant};
 
 /// A position on an [`Arc`]: the step count, the octant of the last step, and both axes'
 /// positions. It keeps the octant it is in, so a jump of any number of steps
@@ -47,13 +47,13 @@ impl ArcWalk {
 
     /// Makes `piece`, beginning at `start`, the present piece.
     fn enter(&mut self, piece: u32, start: u64) {
-        let (long_is_x, sign_x, sign_y) = FRAMES[usize::from(self.arc.octant_of(piece).index())];
+        let (long_is_x, signs) = self.arc.frames[(piece % 8) as usize];
         self.piece = piece;
         self.piece_start = start;
         self.piece_end = start + u64::from(self.arc.piece_steps(piece));
         self.outbound = piece % 2 == 0;
         self.long_is_x = long_is_x;
-        self.signs = [sign_x, sign_y];
+        self.signs = signs;
     }
 
     /// Moves to the piece holding `last` (a position counted as `piece_start`): at most the
@@ -71,6 +71,16 @@ impl ArcWalk {
             start -= u64::from(self.arc.piece_steps(piece));
         }
         self.enter(piece, start);
+    }
+
+    /// The steps of the piece after the present one.
+    #[inline(always)]
+    fn next_steps(&self) -> u32 {
+        if self.outbound {
+            self.arc.inbound_steps
+        } else {
+            self.arc.outbound_steps
+        }
     }
 
     /// The arc being followed.
@@ -104,12 +114,19 @@ impl ArcWalk {
     pub fn advance_to(&mut self, step: u64) -> [i32; 2] {
         let step = step.min(self.arc.steps);
         self.step = step;
-        // Counted from the start's piece; the piece must hold the position the last step left
-        // (step 0: the start itself).
+        // Counted from the start's piece. The piece must hold the position the last step left,
+        // at − 1: piece_start < at ≤ piece_end (step 0 stays in the start's piece).
         let at = step + u64::from(self.arc.first_offset);
-        let last = at - u64::from(step != 0);
-        if last < self.piece_start || last >= self.piece_end {
-            self.find_piece(last);
+        if at > self.piece_end {
+            if at <= self.piece_end + u64::from(self.next_steps()) {
+                // The common crossing: into the next piece.
+                self.enter(self.piece + 1, self.piece_end);
+            } else {
+                self.find_piece(at - 1);
+            }
+        } else if at <= self.piece_start && (step != 0 || self.piece != self.arc.first_piece) {
+            // Back (step 0: to the start's piece, which holds the start itself).
+            self.find_piece(at - u64::from(step != 0));
         }
         // 0 … the piece's steps (the end of a piece is the next one's start): below 2³¹.
         let offset = (at - self.piece_start) as u32;
