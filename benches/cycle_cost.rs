@@ -6,9 +6,11 @@
 //! - `set up a move`: planning (S-curve) and validation (trapezoid);
 //! - `microstep lookup`: `MicrostepTable::outputs`;
 //! - `3-axis line per cycle`: `LinearInterpolation::step` (profile plus geometry, SPEC §16) on
-//!   reference 003's line, driven by the MCX514 trapezoid and by the crate's trapezoid, by phase;
+//!   reference 003's line, driven by the MCX514 trapezoid and S-curve and by the crate's
+//!   trapezoid, by phase;
 //! - `circle per cycle`: `CircularInterpolation::step` (profile plus arc, SPEC §16's 150 on the
-//!   Cortex-M4) on reference 003's circle (r = 10,000, 56,568 steps), driven the same two ways;
+//!   Cortex-M4) on reference 003's circle (r = 10,000, 56,568 steps), driven by the MCX514
+//!   trapezoid and by the crate's trapezoid;
 //! - `peers: per step`: stepgen and ramp-maker on the same move in steps, by phase windows as
 //!   above, delays per step;
 //! - `peers: per cycle` and `peers: plan`: rsruckig and s_curve on the bench move.
@@ -34,8 +36,8 @@ use criterion::{
 use profilegen::format::CycleTime;
 use profilegen::interpolation::{Arc, Direction, Line};
 use profilegen::{
-    DecelerationMode, Mcx514Parameters, Mcx514Trapezoidal, ProfileGenerator, State, Trapezoidal,
-    TrapezoidalParameters,
+    DecelerationMode, Mcx514Parameters, Mcx514SCurve, Mcx514ScurveParameters, Mcx514Trapezoidal,
+    ProfileGenerator, State, Trapezoidal, TrapezoidalParameters,
 };
 
 /// The longest window timed, cycles or steps.
@@ -152,6 +154,30 @@ fn manual_line_mcx514() -> Mcx514Trapezoidal {
             acceleration: Acceleration::from_bits(65_000).unwrap(),
             deceleration: Deceleration::from_bits(65_000).unwrap(),
             deceleration_mode: DecelerationMode::Automatic,
+        },
+        CycleTime::from_seconds(1e-3).unwrap(),
+    )
+    .unwrap()
+}
+
+/// The MCX514 S-curve on the same line: the same registers, JK = DJ = 650,000 pps/s² (the rate
+/// reaches AC in 0.1 s).
+fn manual_line_mcx514_scurve() -> Mcx514SCurve {
+    use profilegen::format::mcx514::{
+        Acceleration, Deceleration, DecelerationJerk, DriveSpeed, InitialSpeed, Jerk,
+    };
+    Mcx514SCurve::new(
+        Mcx514ScurveParameters {
+            trapezoid: Mcx514Parameters {
+                pulses: manual_line().steps(),
+                initial_speed: InitialSpeed::from_bits(500).unwrap(),
+                drive_speed: DriveSpeed::from_bits(20_000).unwrap(),
+                acceleration: Acceleration::from_bits(65_000).unwrap(),
+                deceleration: Deceleration::from_bits(65_000).unwrap(),
+                deceleration_mode: DecelerationMode::Automatic,
+            },
+            jerk: Jerk::from_bits(650_000).unwrap(),
+            deceleration_jerk: DecelerationJerk::from_bits(650_000).unwrap(),
         },
         CycleTime::from_seconds(1e-3).unwrap(),
     )
@@ -300,6 +326,7 @@ fn circle_cost(c: &mut Criterion) {
 fn line_cost(c: &mut Criterion) {
     let mut group = c.benchmark_group("3-axis line per cycle");
     line_phases(&mut group, "mcx514", &manual_line_mcx514());
+    line_phases(&mut group, "mcx514_scurve", &manual_line_mcx514_scurve());
     line_phases(&mut group, "trapezoidal", &manual_line_trapezoid());
     group.finish();
 }

@@ -32,7 +32,8 @@ MODE and the profile options, events and --cycles: as profile_table (its --help 
     --event N:KEY=VALUE[,KEY=VALUE…]   --cycles N (at most 100,000,000 here)
     mcx514 (the XY path of the first two axes and the ideal line, circle or segments)
     --cycle-time S --initial-speed PPS --drive-speed PPS --acceleration PPS_PER_S
-    --deceleration PPS_PER_S --decel-point PULSES | --no-decel --finish DX,DY[,DZ[,DU]]
+    --deceleration PPS_PER_S --jerk PPS_PER_S2 --decel-jerk PPS_PER_S2
+    --decel-point PULSES | --no-decel --finish DX,DY[,DZ[,DU]]
     [--centre CX,CY --direction cw|ccw] | --segment line:DX,DY | --segment arc:CX,CY:FX,FY:cw|ccw
 
 OPTIONS of the plot:
@@ -157,12 +158,16 @@ fn plot_mcx514(options: &cli::mcx514::Options) -> ExitCode {
     }
     let title = format!(
         "MCX514 {what}, {} µs per cycle, {last_cycle} cycles\n\
-         SV {}, DV {}, AC {}, DC {}, {}",
+         SV {}, DV {}, AC {}, DC {}{}, {}",
         options.cycle_seconds * 1e6,
         options.profile.initial_speed,
         options.profile.drive_speed,
         options.profile.acceleration,
         options.profile.deceleration,
+        match options.jerks {
+            Some((jerk, deceleration_jerk)) => format!(", JK {jerk}, DJ {deceleration_jerk}"),
+            None => String::new(),
+        },
         match options.profile.deceleration_mode {
             profilegen::DecelerationMode::Automatic => "automatic deceleration".to_string(),
             profilegen::DecelerationMode::Manual(point) => format!("deceleration at {point}"),

@@ -55,6 +55,8 @@ MCX514 MODE (SPEC §12: the chip's own units, converted with the cycle time):
     --drive-speed PPS           DV, 1 … 8,000,000 pps
     --acceleration PPS_PER_S    AC, 1 … 536,870,911 pps/s
     --deceleration PPS_PER_S    DC (default AC; automatic deceleration needs DC = AC)
+    --jerk PPS_PER_S2           JK, 1 … 1,073,741,823 pps/s²: the S-curve (default: trapezoidal)
+    --decel-jerk PPS_PER_S2     DJ (default JK; automatic deceleration needs DJ = JK)
     --decel-point PULSES        manual deceleration point, in driving-axis (long-axis) pulses
     --no-decel                  deceleration disabled: DV from the start to the finish point
     --finish DX,DY[,DZ[,DU]]    linear interpolation of 2–4 axes to that relative finish point
@@ -72,8 +74,7 @@ Without --decel-point or --no-decel, deceleration is automatic (lines only: a ci
 need one of the two, as on the chip). The columns are the driving axis (position in
 interpolation steps: long-axis pulses of a line, short-axis pulses of a circle; velocity,
 acceleration, as above) and then every axis's pulse position relative to the start:
-cycle,position,velocity,acceleration,x,y[,z,u]. The S-curve (--jerk, --decel-jerk) is not in
-this version.
+cycle,position,velocity,acceleration,x,y[,z,u].
 
 EXIT STATUS:
     0  done    2  bad command line (one line on stderr, nothing on stdout)

@@ -16,7 +16,9 @@ mod velocity;
 pub mod waveform;
 
 pub use error::{Error, Range};
-pub use mcx514::{DecelerationMode, Mcx514Parameters, Mcx514Trapezoidal};
+pub use mcx514::{
+    DecelerationMode, Mcx514Parameters, Mcx514SCurve, Mcx514ScurveParameters, Mcx514Trapezoidal,
+};
 pub use scurve::{SCurve, ScurveParameters, ScurvePlan};
 pub use state::{Limits, ProfileGenerator, State, States, StopKind};
 pub use trapezoidal::{Trapezoidal, TrapezoidalParameters};

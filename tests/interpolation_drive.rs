@@ -211,3 +211,32 @@ fn the_mcx514_profile_drives_the_manuals_line_with_its_manual_deceleration_point
         .count();
     assert!((15..=25).contains(&creep), "{creep} cycles at SV");
 }
+
+/// Reference 003's line driven by the MCX514's S-curve (#14 items 2 and 3): SV 500 pps, DV 20,000
+/// pps, AC = DC = 65,000 pps/s, JK = DJ = 650,000 pps/s² (the rate reaches AC in 0.1 s), at 1 ms,
+/// automatic deceleration; every cycle checked as above, and DV reached (20 steps per cycle).
+#[test]
+fn the_mcx514_scurve_drives_the_manuals_line() {
+    use profilegen::format::mcx514;
+    use profilegen::{DecelerationMode, Mcx514Parameters, Mcx514SCurve, Mcx514ScurveParameters};
+
+    let line = Line::from_pulses([-20_000, 30_000, -50_000]).unwrap();
+    let mut profile = Mcx514SCurve::new(
+        Mcx514ScurveParameters {
+            trapezoid: Mcx514Parameters {
+                pulses: line.steps(),
+                initial_speed: mcx514::InitialSpeed::from_bits(500).unwrap(),
+                drive_speed: mcx514::DriveSpeed::from_bits(20_000).unwrap(),
+                acceleration: mcx514::Acceleration::from_bits(65_000).unwrap(),
+                deceleration: mcx514::Deceleration::from_bits(65_000).unwrap(),
+                deceleration_mode: DecelerationMode::Automatic,
+            },
+            jerk: mcx514::Jerk::from_bits(650_000).unwrap(),
+            deceleration_jerk: mcx514::DecelerationJerk::from_bits(650_000).unwrap(),
+        },
+        profilegen::format::CycleTime::from_seconds(1e-3).unwrap(),
+    )
+    .unwrap();
+    let (_, most) = run(&line, &mut profile);
+    assert_eq!(most, 20);
+}

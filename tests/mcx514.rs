@@ -250,3 +250,14 @@ fn the_largest_registers_at_a_long_cycle_do_not_overflow() {
         assert_eq!(axis.state().position, 1_073_741_823);
     }
 }
+
+#[test]
+fn the_largest_manual_point_is_never_reached() {
+    // 4,294,967,292 pulses, the register's top, is past every finish point: the move cruises at
+    // DV to the finish point and stops there (2, 4, 6, 8, 10 then 10s to 100: 30 + 7·10), as a
+    // late point does; not (as a point wrapped negative would make it) a creep from the start.
+    let point = ManualDecelerationPoint::MAX;
+    let (v, exempt) = velocities(parameters(DecelerationMode::Manual(point)));
+    assert_eq!(v, [2, 4, 6, 8, 10, 10, 10, 10, 10, 10, 10, 10, 0]);
+    assert!(exempt);
+}

@@ -35,7 +35,15 @@ const SOURCES: &[(&str, &str)] = &[
     ("src/velocity.rs", include_str!("../src/velocity.rs")),
     ("src/state.rs", include_str!("../src/state.rs")),
     ("src/waveform.rs", include_str!("../src/waveform.rs")),
-    ("src/mcx514.rs", include_str!("../src/mcx514.rs")),
+    ("src/mcx514/mod.rs", include_str!("../src/mcx514/mod.rs")),
+    (
+        "src/mcx514/trapezoidal.rs",
+        include_str!("../src/mcx514/trapezoidal.rs"),
+    ),
+    (
+        "src/mcx514/scurve.rs",
+        include_str!("../src/mcx514/scurve.rs"),
+    ),
     (
         "src/interpolation/mod.rs",
         include_str!("../src/interpolation/mod.rs"),

@@ -496,7 +496,10 @@ MANUAL_LINE = (-20_000, 30_000, -50_000)
 MANUAL_LINE_MCX514 = [(1000, 500, 20_000, 65_000, 65_000, mode, 45_000) for mode in (0, 1, 2)]
 # The same line driven by the crate's trapezoid: 20 steps/cycle (16.16), 0.065 steps/cycle² (8.24).
 MANUAL_LINE_TRAPEZOID = (20 << 16, round(0.065 * 2**24), 0, 0)
-LINE_PROFILES = ("mcx514", "trapezoid")
+LINE_PROFILES = ("mcx514", "trapezoid", "mcx514_scurve")
+# The manual's line driven by the MCX514 S-curve: the same registers, JK = DJ = 650,000 pps/s²
+# (the rate reaches AC in 0.1 s).
+MANUAL_LINE_MCX514_SCURVE = [registers + (650_000, 650_000) for registers in MANUAL_LINE_MCX514]
 
 
 def random_line(rng, steps: int) -> tuple[int, int, int]:
@@ -534,6 +537,24 @@ def random_mcx514_lines(n: int, seed: int = 14) -> list[tuple[tuple[int, int, in
     return lines
 
 
+def random_mcx514_scurve_lines(n: int, seed: int = 16) -> list[tuple[tuple[int, int, int], tuple]]:
+    """The random MCX514 lines with jerks: JK log-uniform above the bound that lets the rate reach
+    AC in 1,500 cycles (or the whole range), DJ = JK for automatic deceleration."""
+    import math
+    import random
+    rng = random.Random(seed)
+    log_uniform = lambda low, high: int(math.exp(rng.uniform(math.log(low), math.log(max(low, high)))))
+    lines = []
+    for finish, registers in random_mcx514_lines(n, seed):
+        cycle_us, initial, drive, acceleration, deceleration, mode, point = registers
+        cycle = cycle_us * 1e-6
+        low = lambda rate: min(1_073_741_823, max(1, math.ceil(rate / (1500 * cycle))))
+        jerk = log_uniform(low(acceleration), 1_073_741_823)
+        deceleration_jerk = jerk if mode == 0 else log_uniform(low(deceleration), 1_073_741_823)
+        lines.append((finish, registers + (jerk, deceleration_jerk)))
+    return lines
+
+
 def random_trapezoid_lines(n: int, seed: int = 15) -> list[tuple[tuple[int, int, int], tuple]]:
     """Deterministic trapezoid-driven lines: the random trapezoid moves' registers, the distance
     as the long axis."""
@@ -549,8 +570,8 @@ def step_line(probe: Probe, profile: str, finish: tuple[int, int, int], register
     checks that it ends on the finish point."""
     kind = LINE_PROFILES.index(profile)
     words = [kind, *finish, *registers]
-    words += [0] * (11 - len(words))
-    probe.uc.mem_write(SCRATCH_PAGE, struct.pack("<11I", *(w & 0xFFFF_FFFF for w in words)))
+    words += [0] * (13 - len(words))
+    probe.uc.mem_write(SCRATCH_PAGE, struct.pack("<13I", *(w & 0xFFFF_FFFF for w in words)))
     if probe.call("probe_line_setup", SCRATCH_PAGE).u64 == REFUSED:
         raise ProbeFailure(f"line {finish} driven by {profile} {registers} refused")
     for _ in range(max_cycles):
@@ -575,6 +596,10 @@ def measure_lines(probe: Probe, moves: int) -> dict[str, list[int]]:
         step_line(probe, "mcx514", finish, registers, counts["mcx514"])
     for finish, registers in random_trapezoid_lines(moves):
         step_line(probe, "trapezoid", finish, registers, counts["trapezoid"])
+    for registers in MANUAL_LINE_MCX514_SCURVE:
+        step_line(probe, "mcx514_scurve", MANUAL_LINE, registers, counts["mcx514_scurve"])
+    for finish, registers in random_mcx514_scurve_lines(moves):
+        step_line(probe, "mcx514_scurve", finish, registers, counts["mcx514_scurve"])
     return counts
 
 

@@ -4,7 +4,8 @@
 //!
 //! ```text
 //! profile_table mcx514 --cycle-time SECONDS --initial-speed PPS --drive-speed PPS
-//!     --acceleration PPS_PER_S [--deceleration PPS_PER_S] [--jerk PPS_PER_S2] [--decel-jerk PPS_PER_S2]
+//!     --acceleration PPS_PER_S [--deceleration PPS_PER_S]
+//!     [--jerk PPS_PER_S2 [--decel-jerk PPS_PER_S2]]
 //!     [--decel-point PULSES | --no-decel]
 //!     (--finish DX,DY[,DZ[,DU]]                                  linear, 2–4 axes
 //!      | --finish DX,DY --centre CX,CY --direction cw|ccw        circular; finish 0,0 = full circle
@@ -15,7 +16,8 @@
 //! naming the option and the value given (exit status 2), like the other modes.
 
 use profilegen::format::mcx514::{
-    Acceleration, Deceleration, DriveSpeed, FinishPoint, InitialSpeed, ManualDecelerationPoint,
+    Acceleration, Deceleration, DecelerationJerk, DriveSpeed, FinishPoint, InitialSpeed, Jerk,
+    ManualDecelerationPoint,
 };
 use profilegen::format::CycleTime;
 use profilegen::interpolation::{
@@ -23,7 +25,8 @@ use profilegen::interpolation::{
     Direction, InterpolationState, Line, Segment,
 };
 use profilegen::{
-    DecelerationMode, Error, Mcx514Parameters, Mcx514Trapezoidal, ProfileGenerator, State, StopKind,
+    DecelerationMode, Error, Mcx514Parameters, Mcx514SCurve, Mcx514ScurveParameters,
+    Mcx514Trapezoidal, ProfileGenerator, State, StopKind,
 };
 
 use super::{number, whole, Ending, Format, Program, Usage, MAX_CYCLES};
@@ -150,6 +153,8 @@ pub struct Options {
     /// The cycle time as given, in seconds.
     pub cycle_seconds: f64,
     pub profile: Mcx514Parameters,
+    /// `--jerk` (and `--decel-jerk`, default the same): the S-curve; `None`: the trapezoid.
+    pub jerks: Option<(Jerk, DecelerationJerk)>,
     pub geometry: Geometry,
     pub events: Vec<Event>,
     pub cycles: Option<u64>,
@@ -299,17 +304,25 @@ pub fn parse(program: Program, words: Vec<(String, String)>) -> Result<Options, 
         None => Deceleration::from_bits(acceleration.to_bits())
             .map_err(|error| format!("--acceleration '{acceleration_text}': {error}"))?,
     };
-    if let Some(text) = text_of("--jerk").or(text_of("--decel-jerk")) {
-        let name = if text_of("--jerk").is_some() {
-            "--jerk"
-        } else {
-            "--decel-jerk"
-        };
-        return Err(format!(
-            "{name} '{text}': the MCX514 S-curve is not in this version (trapezoidal only: \
-             leave out --jerk and --decel-jerk)"
-        ));
-    }
+    let jerks = match (text_of("--jerk"), text_of("--decel-jerk")) {
+        (None, None) => None,
+        (None, Some(text)) => {
+            return Err(format!(
+                "--decel-jerk '{text}': needs --jerk (the S-curve; without it the profile is \
+                 trapezoidal)"
+            ))
+        }
+        (Some(jerk_text), decel_text) => {
+            let jerk = register("--jerk", jerk_text, Jerk::from_num)?;
+            let deceleration_jerk = match decel_text {
+                Some(text) => register("--decel-jerk", text, DecelerationJerk::from_num)?,
+                // Symmetric by default, as automatic deceleration needs.
+                None => DecelerationJerk::from_bits(jerk.to_bits())
+                    .map_err(|error| format!("--jerk '{jerk_text}': {error}"))?,
+            };
+            Some((jerk, deceleration_jerk))
+        }
+    };
     let deceleration_mode = match (text_of("--decel-point"), text_of("--no-decel")) {
         (Some(text), Some(_)) => {
             return Err(format!(
@@ -388,11 +401,22 @@ pub fn parse(program: Program, words: Vec<(String, String)>) -> Result<Options, 
         deceleration,
         deceleration_mode,
     };
-    // The profile once, so what it refuses (SV above DV, AC ≠ DC with automatic deceleration, a
-    // register that vanishes or overflows at this cycle time) is a command-line error.
+    // The profile once, so what it refuses (SV above DV, AC ≠ DC or JK ≠ DJ with automatic
+    // deceleration, a register that vanishes or overflows at this cycle time) is a command-line
+    // error. Circles and segments drive trapezoidally only, as on the chip.
+    if let (Some((_, _)), false) = (jerks, matches!(geometry, Geometry::Line(_))) {
+        let (name, text) = match text_of("--jerk") {
+            Some(text) => ("--jerk", text),
+            None => ("--decel-jerk", text_of("--decel-jerk").unwrap_or_default()),
+        };
+        return Err(format!(
+            "{name} '{text}': a circle or segments drive trapezoidally only (the MCX514's S-curve \
+             is for linear interpolation)"
+        ));
+    }
     match &geometry {
         Geometry::Line(_) => {
-            Mcx514Trapezoidal::new(profile, cycle_time).map_err(|error| blame(&given, &error))?;
+            Profile::new(profile, jerks, cycle_time).map_err(|error| blame(&given, &error))?;
         }
         Geometry::Circle(arc) => {
             arc.mcx514_profile(circular_driving(&profile), cycle_time)
@@ -411,6 +435,7 @@ pub fn parse(program: Program, words: Vec<(String, String)>) -> Result<Options, 
         cycle_time,
         cycle_seconds,
         profile,
+        jerks,
         geometry,
         events,
         cycles,
@@ -441,6 +466,11 @@ fn blame(given: &[(String, String)], error: &Error) -> String {
         // The deceleration defaults to the acceleration.
         "deceleration" => "--acceleration",
         "manual deceleration point" => "--decel-point",
+        "jerk" => "--jerk",
+        "deceleration increasing rate" if given.iter().any(|(name, _)| name == "--decel-jerk") => {
+            "--decel-jerk"
+        }
+        "deceleration increasing rate" => "--jerk",
         "finish point" => "--finish",
         "arc steps" => "--centre",
         _ => return error.to_string(),
@@ -448,6 +478,44 @@ fn blame(given: &[(String, String)], error: &Error) -> String {
     match given.iter().find(|(seen, _)| seen == name) {
         Some((_, text)) => format!("{name} '{text}': {error}"),
         None => format!("{name}: {error}"),
+    }
+}
+
+/// The driving axis's profile: the MCX514 trapezoid, or its S-curve.
+#[derive(Debug, Clone)]
+pub enum Profile {
+    Trapezoidal(Mcx514Trapezoidal),
+    SCurve(Mcx514SCurve),
+}
+
+impl Profile {
+    /// The S-curve when there are jerks, else the trapezoid.
+    ///
+    /// # Errors
+    /// What the profile refuses.
+    pub fn new(
+        parameters: Mcx514Parameters,
+        jerks: Option<(Jerk, DecelerationJerk)>,
+        cycle: CycleTime,
+    ) -> Result<Self, Error> {
+        Ok(match jerks {
+            None => Profile::Trapezoidal(Mcx514Trapezoidal::new(parameters, cycle)?),
+            Some((jerk, deceleration_jerk)) => Profile::SCurve(Mcx514SCurve::new(
+                Mcx514ScurveParameters {
+                    trapezoid: parameters,
+                    jerk,
+                    deceleration_jerk,
+                },
+                cycle,
+            )?),
+        })
+    }
+
+    fn axis(&mut self) -> &mut dyn ProfileGenerator {
+        match self {
+            Profile::Trapezoidal(axis) => axis,
+            Profile::SCurve(axis) => axis,
+        }
     }
 }
 
@@ -517,12 +585,13 @@ pub fn run<E>(
 ) -> Result<Ending, E> {
     match &options.geometry {
         Geometry::Line(finish) => {
-            let mut profile = Mcx514Trapezoidal::new(options.profile, options.cycle_time)
+            let mut profile = Profile::new(options.profile, options.jerks, options.cycle_time)
                 .expect("checked when parsed");
+            let profile = profile.axis();
             match finish.len() {
-                2 => run_line(options, line::<2>(finish), &mut profile, visit),
-                3 => run_line(options, line::<3>(finish), &mut profile, visit),
-                _ => run_line(options, line::<4>(finish), &mut profile, visit),
+                2 => run_line(options, line::<2>(finish), profile, visit),
+                3 => run_line(options, line::<3>(finish), profile, visit),
+                _ => run_line(options, line::<4>(finish), profile, visit),
             }
         }
         Geometry::Circle(arc) => {

@@ -20,7 +20,7 @@
 //!   cycles that follow can be counted too.
 //! - `probe_line_setup(words)`, `probe_line_step_<profile>()`, `probe_line_complete()`: a 3-axis
 //!   linear interpolation (SPEC §12.3) driven by one of the profiles (`mcx514` the MCX514
-//!   trapezoid, `trapezoid` the crate's `Trapezoidal`), stepped one cycle per call through
+//!   trapezoid, `trapezoid` the crate's `Trapezoidal`, `mcx514_scurve` the MCX514 S-curve), stepped one cycle per call through
 //!   `LinearInterpolation::step`: the measured cost is the profile plus the geometry (SPEC §16).
 //! - `probe_circle_setup(words)`, `probe_circle_step_<profile>()`, `probe_circle_complete(p)`,
 //!   `probe_circle_axes()`: an MCX514 circular interpolation (SPEC §12.4) driven by
@@ -44,8 +44,9 @@ use profilegen::interpolation::{
     Arc, ArcWalk, CircularDriving, Direction, InterpolationState, Line, LinearInterpolation,
 };
 use profilegen::{
-    DecelerationMode, Error, Mcx514Parameters, Mcx514Trapezoidal, ProfileGenerator, SCurve,
-    ScurveParameters, Trapezoidal, TrapezoidalParameters, VelocityContouring, VelocityParameters,
+    DecelerationMode, Error, Mcx514Parameters, Mcx514SCurve, Mcx514ScurveParameters,
+    Mcx514Trapezoidal, ProfileGenerator, SCurve, ScurveParameters, Trapezoidal,
+    TrapezoidalParameters, VelocityContouring, VelocityParameters,
 };
 
 #[path = "../../benches/common/moves.rs"]
@@ -294,53 +295,56 @@ static LINE_MCX514_PROFILE: Other<Mcx514Trapezoidal> =
 static LINE_TRAPEZOID: Other<LinearInterpolation<'static, Trapezoidal, 3>> =
     Other(UnsafeCell::new(MaybeUninit::uninit()));
 static LINE_TRAPEZOID_PROFILE: Other<Trapezoidal> = Other(UnsafeCell::new(MaybeUninit::uninit()));
-/// Which slot the last successful `probe_line_setup` filled: 0 MCX514, 1 trapezoid.
+static LINE_MCX514_SCURVE: Other<LinearInterpolation<'static, Mcx514SCurve, 3>> =
+    Other(UnsafeCell::new(MaybeUninit::uninit()));
+static LINE_MCX514_SCURVE_PROFILE: Other<Mcx514SCurve> =
+    Other(UnsafeCell::new(MaybeUninit::uninit()));
+/// Which slot the last successful `probe_line_setup` filled: 0 MCX514, 1 trapezoid, 2 MCX514
+/// S-curve.
 static LINE_KIND: AtomicU32 = AtomicU32::new(u32::MAX);
 
 /// Sets up the stepped 3-axis line from `words`: `[0]` the profile (0 the MCX514 trapezoid,
-/// 1 the crate's `Trapezoidal`), `[1..4]` the finish point (pulses, `i32` bits), then
+/// 1 the crate's `Trapezoidal`, 2 the MCX514 S-curve), `[1..4]` the finish point (pulses, `i32`
+/// bits), then
 ///
 /// - MCX514: `[4]` the cycle time in µs, `[5]` SV, `[6]` DV (pps), `[7]` AC, `[8]` DC (pps/s),
-///   `[9]` the deceleration mode (0 automatic, 1 manual at `[10]`, 2 disabled);
+///   `[9]` the deceleration mode (0 automatic, 1 manual at `[10]`, 2 disabled); the S-curve
+///   also `[11]` JK and `[12]` DJ (pps/s²);
 /// - trapezoid: `[4]` maximum velocity (16.16), `[5]` acceleration, `[6]` deceleration (8.24),
 ///   `[7]` starting velocity (16.16), raw bits; destination: the line's steps.
 ///
 /// Returns the line's steps, or `u64::MAX` when refused.
 ///
 /// # Safety
-/// `words` points to 11 readable, aligned words.
+/// `words` points to 13 readable, aligned words.
 #[no_mangle]
 pub unsafe extern "C" fn probe_line_setup(words: *const u32) -> u64 {
-    // SAFETY: the caller provides 11 words.
+    // SAFETY: the caller provides 13 words.
     let word = |i: usize| unsafe { words.add(i).read() };
     let line = match Line::from_pulses([word(1) as i32, word(2) as i32, word(3) as i32]) {
         Ok(line) => line,
         Err(_) => return REFUSED,
     };
     let steps = u64::from(line.steps());
+    let mcx514 = || -> Result<Mcx514Parameters, Error> {
+        let deceleration_mode = match word(9) {
+            0 => DecelerationMode::Automatic,
+            1 => DecelerationMode::Manual(mcx514::ManualDecelerationPoint::from_bits(word(10))?),
+            _ => DecelerationMode::Disabled,
+        };
+        Ok(Mcx514Parameters {
+            pulses: line.steps(),
+            initial_speed: mcx514::InitialSpeed::from_bits(word(5))?,
+            drive_speed: mcx514::DriveSpeed::from_bits(word(6))?,
+            acceleration: mcx514::Acceleration::from_bits(word(7))?,
+            deceleration: mcx514::Deceleration::from_bits(word(8))?,
+            deceleration_mode,
+        })
+    };
+    let cycle = || CycleTime::from_seconds(f64::from(word(4)) * 1e-6);
     match word(0) {
         0 => {
-            let profile = || -> Result<Mcx514Trapezoidal, Error> {
-                let cycle = CycleTime::from_seconds(f64::from(word(4)) * 1e-6)?;
-                let deceleration_mode = match word(9) {
-                    0 => DecelerationMode::Automatic,
-                    1 => DecelerationMode::Manual(mcx514::ManualDecelerationPoint::from_bits(
-                        word(10),
-                    )?),
-                    _ => DecelerationMode::Disabled,
-                };
-                Mcx514Trapezoidal::new(
-                    Mcx514Parameters {
-                        pulses: line.steps(),
-                        initial_speed: mcx514::InitialSpeed::from_bits(word(5))?,
-                        drive_speed: mcx514::DriveSpeed::from_bits(word(6))?,
-                        acceleration: mcx514::Acceleration::from_bits(word(7))?,
-                        deceleration: mcx514::Deceleration::from_bits(word(8))?,
-                        deceleration_mode,
-                    },
-                    cycle,
-                )
-            };
+            let profile = || Mcx514Trapezoidal::new(mcx514()?, cycle()?);
             let Ok(profile) = profile() else {
                 return REFUSED;
             };
@@ -350,6 +354,26 @@ pub unsafe extern "C" fn probe_line_setup(words: *const u32) -> u64 {
             // SAFETY: as above.
             unsafe { (*LINE_MCX514.0.get()).write(line.drive(profile)) };
             LINE_KIND.store(0, Ordering::Relaxed);
+        }
+        2 => {
+            let profile = || -> Result<Mcx514SCurve, Error> {
+                Mcx514SCurve::new(
+                    Mcx514ScurveParameters {
+                        trapezoid: mcx514()?,
+                        jerk: mcx514::Jerk::from_bits(word(11))?,
+                        deceleration_jerk: mcx514::DecelerationJerk::from_bits(word(12))?,
+                    },
+                    cycle()?,
+                )
+            };
+            let Ok(profile) = profile() else {
+                return REFUSED;
+            };
+            // SAFETY: as for the MCX514 slots.
+            let profile = unsafe { (*LINE_MCX514_SCURVE_PROFILE.0.get()).write(profile) };
+            // SAFETY: as above.
+            unsafe { (*LINE_MCX514_SCURVE.0.get()).write(line.drive(profile)) };
+            LINE_KIND.store(2, Ordering::Relaxed);
         }
         _ => {
             let profile = || -> Result<Trapezoidal, Error> {
@@ -412,6 +436,17 @@ pub unsafe extern "C" fn probe_line_step_trapezoid() -> i64 {
     output(line.step())
 }
 
+/// Advances the MCX514-S-curve-driven line one cycle: `LinearInterpolation::step`.
+///
+/// # Safety
+/// `probe_line_setup` succeeded before with profile 2.
+#[no_mangle]
+pub unsafe extern "C" fn probe_line_step_mcx514_scurve() -> i64 {
+    // SAFETY: initialized by probe_line_setup (the caller's contract); single-threaded.
+    let line = unsafe { (*LINE_MCX514_SCURVE.0.get()).assume_init_mut() };
+    output(line.step())
+}
+
 /// 1 when the line set up last is complete, else 0; the axes' positions in `out[0..3]`.
 ///
 /// # Safety
@@ -423,6 +458,10 @@ pub unsafe extern "C" fn probe_line_complete(out: *mut i32) -> u32 {
         match LINE_KIND.load(Ordering::Relaxed) {
             0 => {
                 let line = (*LINE_MCX514.0.get()).assume_init_ref();
+                (line.is_complete(), line.state().axes)
+            }
+            2 => {
+                let line = (*LINE_MCX514_SCURVE.0.get()).assume_init_ref();
                 (line.is_complete(), line.state().axes)
             }
             _ => {

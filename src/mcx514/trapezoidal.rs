@@ -48,14 +48,26 @@ struct PerCycle {
     drive: i64,
     acceleration: i64,
     deceleration: i64,
-    /// The manual deceleration point, raw I32F32 pulses (`i64::MAX`, never reached, unless
-    /// manual).
-    trigger: i64,
-    /// DV − AC, raw: a velocity at or above it reaches DV on the next speed-up (the sum itself
-    /// could pass i64 at a cycle of seconds).
-    drive_less_acceleration: i64,
+    /// The manual deceleration point, raw I32F32 whole pulses, held below 2³¹ pulses (every
+    /// point from 2³⁰ on is past every finish point, so never reached); `i64::MAX` unless manual.
+    manual_point: i64,
     automatic: bool,
     disabled: bool,
+    /// max(DC, SV): a larger drop in one cycle is exempt (a late finish, an abrupt stop).
+    largest_drop: i64,
+}
+
+/// Where the move is; each phase has its own one-comparison test for what ends it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Phase {
+    /// At rest before the first cycle.
+    Start,
+    /// Speeding up by AC toward DV.
+    Accelerating,
+    /// At DV (deceleration disabled: from the first cycle).
+    Cruising,
+    /// Slowing down by DC to SV, then creeping at SV.
+    Decelerating,
 }
 
 /// The MCX514's trapezoidal acceleration/deceleration on the driving axis (SPEC §12.2), cycle by
@@ -78,7 +90,7 @@ struct PerCycle {
 /// Every cycle's velocity is at most the pulses left, so the move lands exactly on the finish
 /// point; the cycle after, the velocity drops to zero. A smooth stop decelerates by DC to SV and
 /// stops from there (the chip's decelerating stop); an abrupt stop drops to zero on the next
-/// cycle. S-curve driving is not modelled yet.
+/// cycle. The S-curve is [`Mcx514SCurve`](crate::Mcx514SCurve).
 ///
 /// ```
 /// use profilegen::format::mcx514::{Acceleration, Deceleration, DriveSpeed, InitialSpeed};
@@ -105,16 +117,18 @@ struct PerCycle {
 pub struct Mcx514Trapezoidal {
     profile: PerCycle,
     state: State,
-    /// Raw I32F32 pulses output up to the end of the last cycle that sped up.
-    accelerated: i64,
-    /// Deceleration has started (it never stops once started).
-    decelerating: bool,
+    phase: Phase,
+    /// The position (raw I32F32) at or past which a cycle that begins there starts to
+    /// decelerate: the manual point; with automatic deceleration, while speeding up, half the
+    /// finish point (rounded up: the pulses left, finish − p, are then ≤ the pulses output while
+    /// speeding up, p), and once at DV, the finish point less those pulses. `i64::MAX`: never.
+    trigger: i64,
     /// A smooth stop was commanded: decelerate to SV, then stop.
     stopping: bool,
     complete: bool,
-    /// The last cycle's velocity was cut to the pulses left, or was the stop to zero: the ends of
-    /// the move, where the drop may be up to SV (or, above that, exempt).
-    cut: bool,
+    /// The velocity the last cycle wanted (raw I32F32) before the cut to the pulses left: what
+    /// [`limits`](ProfileGenerator::limits) tells the ends of the move by, off the per-cycle path.
+    wanted: i64,
 }
 
 impl Mcx514Trapezoidal {
@@ -155,113 +169,167 @@ impl Mcx514Trapezoidal {
                          needs a manual deceleration point for that)",
             });
         }
-        let trigger = match parameters.deceleration_mode {
-            DecelerationMode::Manual(point) => i64::from(point.to_bits()) << 32,
+        let manual_point = match parameters.deceleration_mode {
+            // Past 2³¹ − 1 pulses the shift would leave i64; such a point is never reached.
+            DecelerationMode::Manual(point) => {
+                i64::from(point.to_bits().min(i32::MAX as u32)) << 32
+            }
             _ => i64::MAX,
         };
+        let finish = i64::from(finish.to_bits()) << 32;
+        // Converted in the registers' order, so the first bad one is the one reported.
+        let initial = initial.per_cycle(cycle)?.to_bits();
+        let drive = drive.per_cycle(cycle)?.to_bits();
+        let acceleration = parameters.acceleration.per_cycle(cycle)?.to_bits();
+        let deceleration = parameters.deceleration.per_cycle(cycle)?.to_bits();
         let profile = PerCycle {
-            finish: i64::from(finish.to_bits()) << 32,
-            initial: initial.per_cycle(cycle)?.to_bits(),
-            drive: drive.per_cycle(cycle)?.to_bits(),
-            acceleration: parameters.acceleration.per_cycle(cycle)?.to_bits(),
-            deceleration: parameters.deceleration.per_cycle(cycle)?.to_bits(),
-            trigger,
-            drive_less_acceleration: 0,
+            finish,
+            initial,
+            drive,
+            acceleration,
+            deceleration,
+            manual_point,
             automatic,
             disabled: parameters.deceleration_mode == DecelerationMode::Disabled,
-        };
-        let profile = PerCycle {
-            // Both in 0 … 2⁶³ − 1024: the difference cannot overflow.
-            drive_less_acceleration: profile.drive - profile.acceleration,
-            ..profile
+            largest_drop: deceleration.max(initial),
         };
         Ok(Self {
             profile,
             state: State::default(),
-            accelerated: 0,
-            decelerating: false,
+            phase: Phase::Start,
+            // While speeding up (automatic): 2p ≥ finish, i.e. p ≥ ⌈finish/2⌉.
+            trigger: if automatic {
+                (finish + 1) >> 1
+            } else {
+                manual_point
+            },
             stopping: false,
-            complete: profile.finish == 0,
-            cut: false,
+            complete: finish == 0,
+            wanted: 0,
         })
     }
 
     /// Continuous interpolation (SPEC §12.5): moves the finish point to `pulses` (≥ the pulses
     /// output so far) and the manual deceleration point to `manual_point` (`None`: none yet, so
     /// no deceleration until one is given), while the move runs. Returns `false`, changing
-    /// nothing, once the move has ended (it reached its finish point or was stopped after it
-    /// started); a move that has not started yet may be given its first finish point.
+    /// nothing, once the move has ended (it reached its finish point, or was stopped after it
+    /// started), or for a move with automatic deceleration or deceleration disabled (continuous
+    /// runs are built with a manual point); a move that has not started yet may be given its
+    /// first finish point.
     pub(crate) fn continue_to(&mut self, pulses: u32, manual_point: Option<u32>) -> bool {
         let finish = i64::from(pulses) << 32;
-        let moved = self.state.position.to_bits() != 0 || self.state.velocity != I32F32::ZERO;
-        if (self.complete && moved) || self.stopping || finish < self.state.position.to_bits() {
+        let position = self.state.position.to_bits();
+        let moved = position != 0 || self.state.velocity != I32F32::ZERO;
+        if (self.complete && moved)
+            || self.stopping
+            || finish < position
+            || self.profile.automatic
+            || self.profile.disabled
+        {
             return false;
         }
+        // As in `new`: a point past 2³¹ − 1 pulses is never reached.
+        let point = manual_point.map_or(i64::MAX, |point| {
+            i64::from(point.min(i32::MAX as u32)) << 32
+        });
         self.profile.finish = finish;
-        self.profile.trigger = manual_point.map_or(i64::MAX, |point| i64::from(point) << 32);
-        self.complete = finish == self.state.position.to_bits();
+        self.profile.manual_point = point;
+        if self.phase != Phase::Decelerating {
+            self.trigger = point;
+        }
+        self.complete = finish == position;
         true
     }
 
-    /// The velocity of the next cycle, before the cut to the pulses left (raw I32F32), from the
-    /// velocity `before` at `position` with `left` pulses to the finish point.
-    #[inline(always)]
-    fn next_velocity(&mut self, position: i64, before: i64, left: i64) -> i64 {
-        let p = &self.profile;
-        if p.disabled && !self.stopping {
+    /// The velocity of the next cycle, before the cut to the pulses left (raw I32F32), with the
+    /// phase it leaves the move in. The rules (SPEC §12.2): SV at once; up by AC to DV; down by
+    /// DC to SV from the cycle that begins at or past the trigger; a smooth stop decelerates at
+    /// once and stops from SV.
+    #[inline]
+    fn next_velocity(&mut self, position: i64, velocity: i64) -> i64 {
+        if self.phase != Phase::Decelerating && position >= self.trigger {
+            self.phase = Phase::Decelerating;
+        }
+        match self.phase {
+            Phase::Cruising => velocity,
+            Phase::Accelerating => {
+                // Saturating: at a cycle of seconds AC alone is near 2³¹ pulses/cycle², and with
+                // the velocity it can pass i64 in raw bits; DV caps the sum anyway.
+                let next = velocity.saturating_add(self.profile.acceleration);
+                let drive = self.profile.drive;
+                if next < drive {
+                    return next;
+                }
+                self.cruise(position + drive);
+                drive
+            }
+            Phase::Decelerating => {
+                let initial = self.profile.initial;
+                if self.stopping && velocity <= initial {
+                    // A smooth stop ends at SV, as the chip's decelerating stop does.
+                    self.complete = true;
+                    return 0;
+                }
+                // Down by DC, never below SV (the creep). No overflow: 0 ≤ velocity and
+                // DC < 2⁶³ in raw bits.
+                (velocity - self.profile.deceleration).max(initial)
+            }
+            Phase::Start => self.start(),
+        }
+    }
+
+    /// The first cycle: SV at once (DV with deceleration disabled).
+    #[cold]
+    fn start(&mut self) -> i64 {
+        let p = self.profile;
+        if p.disabled {
+            self.phase = Phase::Cruising;
+            self.trigger = i64::MAX;
             return p.drive;
         }
-        if !self.decelerating {
-            self.decelerating = self.stopping
-                // The output count is the position's integer part: compare whole pulses.
-                || position >> 32 << 32 >= p.trigger
-                || (p.automatic && before != 0 && left <= self.accelerated);
-        }
-        if self.decelerating {
-            if self.stopping && before <= p.initial {
-                return 0; // a smooth stop ends at SV, as the chip's decelerating stop does
-            }
-            // Down by DC, never below SV (the creep). No overflow: 0 ≤ velocity and
-            // DC < 2⁶³ in raw bits.
-            return (before - p.deceleration).max(p.initial);
-        }
-        if before == 0 {
-            p.initial // the start: SV at once
-        } else if before >= p.drive_less_acceleration {
-            // DV caps the speed-up; comparing with DV − AC avoids the sum, which at a cycle of
-            // seconds (AC near 2³¹ pulses/cycle²) can pass i64 in raw bits.
-            p.drive
+        if p.initial < p.drive {
+            self.phase = Phase::Accelerating;
         } else {
-            before + p.acceleration
+            self.cruise(p.initial);
+        }
+        p.initial
+    }
+
+    /// At DV after a cycle that sped up to `reached` (raw I32F32 pulses): with automatic
+    /// deceleration, the trigger becomes the finish point less the pulses output while speeding
+    /// up.
+    #[cold]
+    fn cruise(&mut self, reached: i64) {
+        self.phase = Phase::Cruising;
+        if self.profile.automatic {
+            self.trigger = self.profile.finish - reached;
         }
     }
 }
 
 impl ProfileGenerator for Mcx514Trapezoidal {
+    // Inlined into each caller: called from several interpolations, it would otherwise stay an
+    // out-of-line call returning the whole state through memory.
     #[inline]
     fn step(&mut self) -> State {
-        let before = self.state.velocity.to_bits();
-        let position = self.state.position.to_bits();
-        let (mut velocity, mut cut) = (0, true);
-        if !self.complete {
-            // At most the pulses left: the move lands exactly on the finish point. i64: both
-            // below 2³¹ pulses in raw I32F32.
+        let (position, before) = (self.state.position.to_bits(), self.state.velocity.to_bits());
+        let velocity = if self.complete {
+            self.wanted = 0;
+            0
+        } else {
+            let wanted = self.next_velocity(position, before);
+            self.wanted = wanted;
+            // At most the pulses left: the move lands exactly on the finish point, complete
+            // there (the next cycle drops to zero). i64: both below 2³¹ pulses in raw I32F32.
             let left = self.profile.finish - position;
-            let wanted = self.next_velocity(position, before, left);
-            velocity = wanted.min(left);
-            // The ends of the move: cut to the pulses left, or the stop to zero.
-            cut = velocity < wanted || velocity == 0;
-            if velocity > before && !self.decelerating {
-                self.accelerated = position + velocity;
+            if wanted >= left {
+                self.complete = true;
+                left
+            } else {
+                wanted
             }
-        }
-        self.cut = cut;
-        let state = advance(&mut self.state, I32F32::from_bits(velocity));
-        if velocity == 0 || state.position.to_bits() == self.profile.finish {
-            // Complete at rest; on the finish point the next cycle drops to zero.
-            self.complete = true;
-        }
-        state
+        };
+        advance(&mut self.state, I32F32::from_bits(velocity))
     }
 
     fn state(&self) -> State {
@@ -274,14 +342,23 @@ impl ProfileGenerator for Mcx514Trapezoidal {
 
     fn stop(&mut self, kind: StopKind) {
         match kind {
-            StopKind::Smooth => self.stopping = true,
+            StopKind::Smooth => {
+                self.stopping = true;
+                self.phase = Phase::Decelerating;
+            }
             StopKind::Abrupt => self.complete = true,
         }
     }
 
     fn limits(&self) -> Limits {
         let p = &self.profile;
-        let before = self.state.velocity.to_bits() - self.state.acceleration.to_bits();
+        let (velocity, acceleration) = (
+            self.state.velocity.to_bits(),
+            self.state.acceleration.to_bits(),
+        );
+        let before = velocity - acceleration;
+        // The ends of the move: the cycle cut to the pulses left, and the stop to zero.
+        let cut = velocity < self.wanted || velocity == 0;
         // From rest the first cycle jumps to SV (to DV with deceleration disabled).
         let speed_up = if before == 0 {
             if p.disabled {
@@ -296,17 +373,15 @@ impl ProfileGenerator for Mcx514Trapezoidal {
             max_velocity: Some(I32F32::from_bits(p.drive)),
             max_speed_up: Some(I32F32::from_bits(speed_up)),
             // DC on the ramp; at the ends (the cut to the pulses left, the stop) up to SV.
-            max_slow_down: Some(I32F32::from_bits(if self.cut {
+            max_slow_down: Some(I32F32::from_bits(if cut {
                 p.deceleration.max(p.initial)
             } else {
                 p.deceleration
             })),
             max_acceleration: None,
             max_jerk: None,
-            // A drop beyond both DC and SV only happens at a late finish or after an abrupt
-            // stop: the last cycle's velocity change is −drop.
-            exempt: self.state.acceleration.to_bits().wrapping_neg()
-                > p.deceleration.max(p.initial),
+            // A drop beyond both DC and SV only happens at a late finish or an abrupt stop.
+            exempt: -acceleration > p.largest_drop,
         }
     }
 }
