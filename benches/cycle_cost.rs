@@ -8,6 +8,9 @@
 //! - `3-axis line per cycle`: `LinearInterpolation::step` (profile plus geometry, SPEC §16) on
 //!   reference 003's line, driven by the MCX514 trapezoid and S-curve and by the crate's
 //!   trapezoid, by phase;
+//! - `circle per cycle`: `CircularInterpolation::step` (profile plus arc, SPEC §16's 150 on the
+//!   Cortex-M4) on reference 003's circle (r = 10,000, 56,568 steps), driven by the MCX514
+//!   trapezoid and by the crate's trapezoid;
 //! - `peers: per step`: stepgen and ramp-maker on the same move in steps, by phase windows as
 //!   above, delays per step;
 //! - `peers: per cycle` and `peers: plan`: rsruckig and s_curve on the bench move.
@@ -31,7 +34,7 @@ use criterion::{
     black_box, criterion_group, criterion_main, BenchmarkGroup, Criterion, Throughput,
 };
 use profilegen::format::CycleTime;
-use profilegen::interpolation::Line;
+use profilegen::interpolation::{Arc, Direction, Line};
 use profilegen::{
     DecelerationMode, Mcx514Parameters, Mcx514SCurve, Mcx514ScurveParameters, Mcx514Trapezoidal,
     ProfileGenerator, State, Trapezoidal, TrapezoidalParameters,
@@ -233,6 +236,93 @@ fn line_phases<G: ProfileGenerator + Clone>(
     }
 }
 
+/// Reference 003's circle: r = 10,000, a full turn counter-clockwise, 56,568 steps.
+fn manual_circle() -> Arc {
+    Arc::from_pulses([10_000, 0], [0, 0], Direction::CounterClockwise).unwrap()
+}
+
+/// Its MCX514 trapezoid at 1 ms: SV 500, DV 20,000 pps, AC = DC = 65,000 pps/s, the manual
+/// deceleration point 53,493.
+fn manual_circle_mcx514() -> Mcx514Trapezoidal {
+    use profilegen::format::mcx514::{
+        Acceleration, Deceleration, DriveSpeed, InitialSpeed, ManualDecelerationPoint,
+    };
+    use profilegen::interpolation::CircularDriving;
+    manual_circle()
+        .mcx514_profile(
+            CircularDriving {
+                initial_speed: InitialSpeed::from_bits(500).unwrap(),
+                drive_speed: DriveSpeed::from_bits(20_000).unwrap(),
+                acceleration: Acceleration::from_bits(65_000).unwrap(),
+                deceleration: Deceleration::from_bits(65_000).unwrap(),
+                jerk: None,
+                deceleration_jerk: None,
+                deceleration_mode: DecelerationMode::Manual(
+                    ManualDecelerationPoint::from_bits(53_493).unwrap(),
+                ),
+            },
+            CycleTime::from_seconds(1e-3).unwrap(),
+        )
+        .unwrap()
+}
+
+/// The crate's trapezoid on the same circle: 20 steps/cycle, 0.065 steps/cycle².
+fn manual_circle_trapezoid() -> Trapezoidal {
+    use profilegen::format::juno::{Acceleration, TargetVelocity};
+    Trapezoidal::new(TrapezoidalParameters {
+        destination: manual_circle().steps() as i32,
+        max_velocity: TargetVelocity::from_num(20.0).unwrap(),
+        acceleration: Acceleration::from_num(0.065).unwrap(),
+        deceleration: Acceleration::ZERO,
+        start_velocity: TargetVelocity::ZERO,
+    })
+    .unwrap()
+}
+
+/// One profile's phase windows on the manual's circle, as `line_phases` does for the line.
+fn circle_phases<G: ProfileGenerator + Clone>(
+    group: &mut BenchmarkGroup<'_, WallTime>,
+    name: &str,
+    start: &G,
+) {
+    let circle = manual_circle();
+    for (phase, label) in PHASES {
+        let (first, length) = generator_window(start, phase, WINDOW);
+        if length == 0 {
+            continue;
+        }
+        let at = common::advanced(start, first);
+        group.throughput(Throughput::Elements(length));
+        group.bench_function(format!("{name}/{label}"), |b| {
+            b.iter_custom(|iterations| {
+                let mut total = Duration::ZERO;
+                for _ in 0..iterations {
+                    let mut profile = at.clone();
+                    let mut interpolation = circle.drive(&mut profile);
+                    let start = Instant::now();
+                    let mut accumulator = 0i64;
+                    for _ in 0..length {
+                        let state = interpolation.step();
+                        accumulator = fold(accumulator, state.driving)
+                            ^ i64::from(state.axes[0])
+                            ^ i64::from(state.axes[1]).rotate_left(21);
+                    }
+                    total += start.elapsed();
+                    black_box(accumulator);
+                }
+                total
+            })
+        });
+    }
+}
+
+fn circle_cost(c: &mut Criterion) {
+    let mut group = c.benchmark_group("circle per cycle");
+    circle_phases(&mut group, "mcx514", &manual_circle_mcx514());
+    circle_phases(&mut group, "trapezoidal", &manual_circle_trapezoid());
+    group.finish();
+}
+
 fn line_cost(c: &mut Criterion) {
     let mut group = c.benchmark_group("3-axis line per cycle");
     line_phases(&mut group, "mcx514", &manual_line_mcx514());
@@ -385,6 +475,7 @@ criterion_group!(
     benches,
     cycle_cost,
     line_cost,
+    circle_cost,
     setup_cost,
     microstep,
     peers_per_step,

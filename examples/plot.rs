@@ -30,10 +30,11 @@ MODE and the profile options, events and --cycles: as profile_table (its --help 
     velocity | trapezoidal | scurve
     --velocity V --acceleration A --deceleration D --jerk J --destination X --start-velocity S
     --event N:KEY=VALUE[,KEY=VALUE…]   --cycles N (at most 100,000,000 here)
-    mcx514 (the XY path of the first two axes and the ideal line)
+    mcx514 (the XY path of the first two axes and the ideal line, circle or segments)
     --cycle-time S --initial-speed PPS --drive-speed PPS --acceleration PPS_PER_S
     --deceleration PPS_PER_S --jerk PPS_PER_S2 --decel-jerk PPS_PER_S2
     --decel-point PULSES | --no-decel --finish DX,DY[,DZ[,DU]]
+    [--centre CX,CY --direction cw|ccw] | --segment line:DX,DY | --segment arc:CX,CY:FX,FY:cw|ccw
 
 OPTIONS of the plot:
     --output FILE        the SVG to write (required)
@@ -49,6 +50,9 @@ EXAMPLE:
         --output scurve.svg
     plot mcx514 --cycle-time 0.001 --initial-speed 500 --drive-speed 20000 \\
         --acceleration 65000 --finish 37,23 --output line.svg
+    plot mcx514 --cycle-time 0.001 --initial-speed 2000 --drive-speed 20000 \\
+        --acceleration 200000 --decel-point 100 --finish 0,0 --centre 12,-5 --direction ccw \\
+        --output circle.svg
 ";
 
 /// The picture's size in pixels, and the plotting area's width (the columns of the decimation).
@@ -132,9 +136,9 @@ fn plot_mcx514(options: &cli::mcx514::Options) -> ExitCode {
             cli::USAGE,
         );
     }
-    let cli::mcx514::Geometry::Line(finish) = &options.geometry;
-    let long = finish.iter().map(|d| d.unsigned_abs()).max().unwrap_or(0);
-    let stride = (u64::from(long) / PATH_POINTS).max(1);
+    let (ideal, what, label) = ideal_path(&options.geometry);
+    let steps = u64::from(options.profile.pulses);
+    let stride = (steps / PATH_POINTS).max(1);
     let mut path: Vec<(i32, i32)> = vec![(0, 0)];
     let (mut last_step, mut last_cycle, mut last_point) = (0u64, 0, (0, 0));
     let ending = cli::mcx514::run(options, |cycle, row| {
@@ -153,13 +157,8 @@ fn plot_mcx514(options: &cli::mcx514::Options) -> ExitCode {
         path.push(last_point);
     }
     let title = format!(
-        "MCX514 linear interpolation to ({}), {} µs per cycle, {last_cycle} cycles\n\
+        "MCX514 {what}, {} µs per cycle, {last_cycle} cycles\n\
          SV {}, DV {}, AC {}, DC {}{}, {}",
-        finish
-            .iter()
-            .map(i32::to_string)
-            .collect::<Vec<_>>()
-            .join(", "),
         options.cycle_seconds * 1e6,
         options.profile.initial_speed,
         options.profile.drive_speed,
@@ -176,7 +175,7 @@ fn plot_mcx514(options: &cli::mcx514::Options) -> ExitCode {
         }
     );
     let output = options.output.clone().expect("required when parsed");
-    if let Err(error) = draw_path(&output, &title, &path, (finish[0], finish[1])) {
+    if let Err(error) = draw_path(&output, &title, &path, &ideal, label) {
         return fail(&format!("--output '{output}': {error}"), 1);
     }
     if ending == Ending::CutShort {
@@ -186,13 +185,96 @@ fn plot_mcx514(options: &cli::mcx514::Options) -> ExitCode {
     ExitCode::SUCCESS
 }
 
+/// The ideal path of a geometry (relative to the start, in pulses, for the picture only: `f64`),
+/// what it is, and its legend: the line to the finish point, the true circle along the arc, the
+/// segments one after the other.
+fn ideal_path(geometry: &cli::mcx514::Geometry) -> (Vec<(f64, f64)>, String, &'static str) {
+    use cli::mcx514::Geometry;
+    use profilegen::interpolation::Segment;
+    let join = |values: &[i32]| {
+        values
+            .iter()
+            .map(i32::to_string)
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    match geometry {
+        Geometry::Line(finish) => (
+            vec![(0.0, 0.0), (f64::from(finish[0]), f64::from(finish[1]))],
+            format!("linear interpolation to ({})", join(finish)),
+            "the ideal line",
+        ),
+        Geometry::Circle(arc) => (
+            ideal_arc((0.0, 0.0), arc),
+            format!(
+                "circular interpolation around ({}) to ({}), {}",
+                join(&arc.centre()),
+                join(&arc.finish()),
+                match arc.direction() {
+                    profilegen::interpolation::Direction::Clockwise => "clockwise",
+                    profilegen::interpolation::Direction::CounterClockwise => "counter-clockwise",
+                }
+            ),
+            "the true circle",
+        ),
+        Geometry::Segments(segments) => {
+            let mut points = vec![(0.0, 0.0)];
+            let mut origin = (0.0, 0.0);
+            for segment in segments {
+                match segment {
+                    Segment::Line(line) => {
+                        let [dx, dy] = line.finish();
+                        points.push((origin.0 + f64::from(dx), origin.1 + f64::from(dy)));
+                    }
+                    Segment::Arc(arc) => points.extend(ideal_arc(origin, arc)),
+                }
+                let [dx, dy] = segment.end();
+                origin = (origin.0 + f64::from(dx), origin.1 + f64::from(dy));
+            }
+            (
+                points,
+                format!("continuous interpolation, {} segments", segments.len()),
+                "the ideal lines and circles",
+            )
+        }
+    }
+}
+
+/// Points of the true circle of `arc` from its start (at `origin`) to its end, in its direction.
+fn ideal_arc(origin: (f64, f64), arc: &profilegen::interpolation::Arc) -> Vec<(f64, f64)> {
+    use std::f64::consts::TAU;
+    let [cx, cy] = arc.centre().map(f64::from);
+    let radius = (arc.radius_squared() as f64).sqrt();
+    let start = (-cy).atan2(-cx);
+    let [ex, ey] = arc.end().map(f64::from);
+    let sign = match arc.direction() {
+        profilegen::interpolation::Direction::CounterClockwise => 1.0,
+        profilegen::interpolation::Direction::Clockwise => -1.0,
+    };
+    let mut sweep = (sign * ((ey - cy).atan2(ex - cx) - start)).rem_euclid(TAU);
+    if sweep < 1e-12 {
+        sweep = TAU; // a full circle
+    }
+    let samples = 720;
+    (0..=samples)
+        .map(|i| {
+            let angle = start + sign * sweep * f64::from(i) / f64::from(samples);
+            (
+                origin.0 + cx + radius * angle.cos(),
+                origin.1 + cy + radius * angle.sin(),
+            )
+        })
+        .collect()
+}
+
 /// Draws the XY path as steps (each pulse a unit move, as the axes output them) and the ideal
-/// line from the start to the finish point, on equal scales.
+/// path beside it, on equal scales.
 fn draw_path(
     path: &str,
     title: &str,
     points: &[(i32, i32)],
-    finish: (i32, i32),
+    ideal: &[(f64, f64)],
+    ideal_label: &'static str,
 ) -> Result<(), Box<dyn std::error::Error>> {
     let root = SVGBackend::new(path, (900, 900)).into_drawing_area();
     root.fill(&WHITE)?;
@@ -200,9 +282,17 @@ fn draw_path(
     for (line, size) in title.lines().zip([20, 16]) {
         root = root.titled(line, ("sans-serif", size))?;
     }
-    // Equal scales: one square range around both ends.
-    let (x0, x1) = (finish.0.min(0) as f64, finish.0.max(0) as f64);
-    let (y0, y1) = (finish.1.min(0) as f64, finish.1.max(0) as f64);
+    // Equal scales: one square range around the path and the ideal path.
+    let xs = points
+        .iter()
+        .map(|p| f64::from(p.0))
+        .chain(ideal.iter().map(|p| p.0));
+    let ys = points
+        .iter()
+        .map(|p| f64::from(p.1))
+        .chain(ideal.iter().map(|p| p.1));
+    let (x0, x1) = xs.fold((0.0f64, 0.0f64), |(lo, hi), x| (lo.min(x), hi.max(x)));
+    let (y0, y1) = ys.fold((0.0f64, 0.0f64), |(lo, hi), y| (lo.min(y), hi.max(y)));
     let span = (x1 - x0).max(y1 - y0).max(1.0) * 1.08;
     let (cx, cy) = ((x0 + x1) / 2.0, (y0 + y1) / 2.0);
     let mut chart = ChartBuilder::on(&root)
@@ -219,16 +309,16 @@ fn draw_path(
         .y_desc("y (pulses)")
         .light_line_style(RGBColor(235, 235, 235))
         .draw()?;
-    let ideal = RGBColor(214, 39, 40);
+    let ideal_color = RGBColor(214, 39, 40);
     chart
         .draw_series(DashedLineSeries::new(
-            [(0.0, 0.0), (finish.0 as f64, finish.1 as f64)],
+            ideal.iter().copied(),
             6,
             4,
-            ideal.stroke_width(1),
+            ideal_color.stroke_width(1),
         ))?
-        .label("the ideal line")
-        .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], ideal.stroke_width(1)));
+        .label(ideal_label)
+        .legend(move |(x, y)| PathElement::new([(x, y), (x + 20, y)], ideal_color.stroke_width(1)));
     // Each pulse as the axes make it: x first, then y (a staircase when points are one pulse
     // apart; a polyline through the kept points otherwise).
     let mut staircase = Vec::with_capacity(points.len() * 2);

@@ -24,7 +24,8 @@ MODE:
     trapezoidal    trapezoidal point-to-point    needs --destination --velocity --acceleration
     scurve         MC1451A S-curve               needs --destination --velocity --acceleration --jerk
     mcx514         NOVA MCX514 interpolation     needs --cycle-time --initial-speed --drive-speed
-                                                 --acceleration --finish (its options below)
+                                                 --acceleration, and --finish or --segment (its
+                                                 options below)
 
 OPTIONS (values are decimals in per-cycle units, rounded to the mode's registers):
     --velocity V         counts/cycle (velocity mode: signed target; others: maximum)
@@ -59,12 +60,21 @@ MCX514 MODE (SPEC §12: the chip's own units, converted with the cycle time):
     --decel-point PULSES        manual deceleration point, in driving-axis (long-axis) pulses
     --no-decel                  deceleration disabled: DV from the start to the finish point
     --finish DX,DY[,DZ[,DU]]    linear interpolation of 2–4 axes to that relative finish point
+    --centre CX,CY              with --finish DX,DY: circular interpolation around that
+                                centre (relative to the start); --finish 0,0 is a full circle
+    --direction cw|ccw          the circle's direction
+    --segment line:DX,DY | --segment arc:CX,CY:FX,FY:cw|ccw
+                                continuous interpolation on X and Y: the segments back to back,
+                                each relative to the previous end (repeatable, in order; instead
+                                of --finish); --decel-point counts from the last segment's start
     --event N:stop=smooth|abrupt
                                 a stop before cycle N (the only events of this mode)
     --cycles, --every, --format as above.
-Without --decel-point or --no-decel, deceleration is automatic. The columns are the driving axis
-(position in interpolation steps, velocity, acceleration, as above) and then every axis's pulse
-position relative to the start: cycle,position,velocity,acceleration,x,y[,z,u].
+Without --decel-point or --no-decel, deceleration is automatic (lines only: a circle or segments
+need one of the two, as on the chip). The columns are the driving axis (position in
+interpolation steps: long-axis pulses of a line, short-axis pulses of a circle; velocity,
+acceleration, as above) and then every axis's pulse position relative to the start:
+cycle,position,velocity,acceleration,x,y[,z,u].
 
 EXIT STATUS:
     0  done    2  bad command line (one line on stderr, nothing on stdout)
@@ -79,6 +89,8 @@ EXAMPLES:
         --start-velocity 1 --event 100:destination=-500
     profile_table mcx514 --cycle-time 0.001 --initial-speed 500 --drive-speed 20000 \\
         --acceleration 65000 --decel-point 45000 --finish -20000,30000,-50000 --every 100
+    profile_table mcx514 --cycle-time 0.001 --initial-speed 500 --drive-speed 20000 \\
+        --acceleration 65000 --decel-point 53493 --finish 0,0 --centre 10000,0 --direction ccw
 ";
 
 fn write_header(out: &mut impl Write, format: Format) -> io::Result<()> {

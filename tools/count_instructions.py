@@ -603,6 +603,80 @@ def measure_lines(probe: Probe, moves: int) -> dict[str, list[int]]:
     return counts
 
 
+# The manual's circle (reference 003): r = 10,000 full turn, SV 500, DV 20,000 pps, AC = DC
+# 65,000 pps/s, DP 53,493, at a 1 ms cycle: centre, finish, CCW, then the MCX514 registers.
+MANUAL_CIRCLE = (10_000, 0, 0, 0, 1, 500, 20_000, 65_000, 65_000, 53_493, 1_000)
+
+
+def random_circles(n: int, seed: int = 15) -> list[tuple[int, ...]]:
+    """Deterministic MCX514 circles of about 1,000 cycles each: a radius log-uniform in 1 .. 2^27
+    at a random angle (the start exactly on the circle: the centre is rounded, the radius follows),
+    a full, half or quarter turn in either direction (the opposite and the quarter-turn points of
+    an exact start are exact too), the cycle time and DV chosen so that about a thousand cycles
+    cover the arc, SV a tenth of DV, AC = DC for a 100-cycle ramp, and the manual deceleration
+    point the continuous-time ramp's pulses before the end."""
+    import math
+    import random
+    rng = random.Random(seed)
+    circles = []
+    while len(circles) < n:
+        radius = math.exp(rng.uniform(0, math.log(2**27)))
+        angle = rng.uniform(0, 2 * math.pi)
+        cx, cy = -round(radius * math.cos(angle)), -round(radius * math.sin(angle))
+        if (cx, cy) == (0, 0):
+            continue
+        turn = rng.choice(("full", "half", "quarter"))
+        # The start relative to the centre is (-cx, -cy); finishes relative to the start.
+        finish = {"full": (0, 0), "half": (2 * cx, 2 * cy), "quarter": (cx + cy, cy - cx)}[turn]
+        ccw = rng.randrange(2)
+        if turn == "quarter" and not ccw:
+            finish = (cx - cy, cy + cx)
+        steps = 6 * math.hypot(cx, cy) * {"full": 1.0, "half": 0.5, "quarter": 0.25}[turn] + 1
+        cycle_us = max(1_000, math.ceil(steps / 4_000_000 * 1e6 / 1_000))
+        cycle = cycle_us * 1e-6
+        drive = max(10, min(8_000_000, round(steps / 1_000 / cycle)))
+        initial = max(1, drive // 10)
+        acceleration = max(1, min(2**29 - 1, round((drive - initial) / (100 * cycle))))
+        ramp = math.ceil((drive * drive - initial * initial) / (2 * acceleration))
+        point = max(0, int(steps) - ramp)
+        circles.append((cx, cy, *finish, ccw, initial, drive, acceleration, acceleration, point, cycle_us))
+    return circles
+
+
+def as_trapezoid(circle: tuple[int, ...]) -> tuple[int, ...]:
+    """The same circle driven by the crate's `Trapezoidal`: DV·T as 16.16, AC·T² as 8.24."""
+    *geometry, initial, drive, acceleration, _, _, cycle_us = circle
+    cycle = cycle_us * 1e-6
+    velocity = max(1, min(2**31 - 1, round(drive * cycle * 65536)))
+    rate = max(1, min(2**31 - 1, round(acceleration * cycle * cycle * 2**24)))
+    return (*geometry, 1, velocity, rate, 0, 0, 0, 0)
+
+
+def measure_circles(probe: Probe, moves: int) -> dict[str, list[int]]:
+    """Per-cycle counts of the circular interpolation (profile plus arc) per driving profile: the
+    manual's circle and `moves` random ones, each to its end (a full turn back on its start)."""
+    counts: dict[str, list[int]] = {"mcx514": [], "trapezoid": []}
+    for circle in [MANUAL_CIRCLE] + random_circles(moves):
+        *geometry, initial, drive, acceleration, deceleration, point, cycle_us = circle
+        mcx514 = (*geometry, 0, initial, drive, acceleration, deceleration, point, cycle_us)
+        for name, words in (("mcx514", mcx514), ("trapezoid", as_trapezoid(circle))):
+            kind = 0 if name == "mcx514" else 1
+            probe.uc.mem_write(SCRATCH_PAGE, struct.pack("<12I", *(w & 0xFFFF_FFFF for w in words)))
+            if probe.call("probe_circle_setup", SCRATCH_PAGE).r0:
+                raise ProbeFailure(f"circle refused: {words}")
+            for _ in range(200_000):
+                counts[name].append(probe.call(f"probe_circle_step_{name}").instructions)
+                if probe.call("probe_circle_complete", kind).r0:
+                    break
+            else:
+                raise ProbeFailure(f"circle {words} did not end in 200,000 cycles")
+            counts[name].append(probe.call(f"probe_circle_step_{name}").instructions)
+            end = probe.call("probe_circle_axes").u64
+            if circle[2:4] == (0, 0) and end != 0:
+                raise ProbeFailure(f"full circle {words} ended at {end:#x}, not at its start")
+    return counts
+
+
 # Verification ------------------------------------------------------------------------------------
 
 
@@ -675,6 +749,11 @@ def main() -> int:
     parser.add_argument("--line-budget", action="append", default=[], metavar="PROFILE=N",
                         help="fail when a cycle of a 3-axis line driven by PROFILE (mcx514, trapezoid) "
                              "executes more than N instructions (profile plus geometry); repeatable")
+    parser.add_argument("--circle-moves", type=int, default=20,
+                        help="random MCX514 circles stepped to the end, besides the manual's (default %(default)s)")
+    parser.add_argument("--circle-budget", action="append", default=[], metavar="PROFILE=N",
+                        help="fail when a cycle of a circle driven by PROFILE (mcx514, trapezoid) executes "
+                             "more than N instructions; repeatable")
     parser.add_argument("--functions", type=int, default=8,
                         help="functions listed for the worst plan (default %(default)s)")
     parser.add_argument("--top", type=int, default=5, help="the most expensive plans listed (default 5)")
@@ -762,6 +841,12 @@ def main() -> int:
             print(f"  {'3-axis line, ' + name:26} max {max(counts_):4}, mean {statistics.fmean(counts_):6.1f} "
                   f"instructions ({len(counts_)} cycles)")
         print(f"  ({time.monotonic() - lines_started:.1f} s)")
+        print(f"== MCX514 circular interpolation, one call per cycle (profile and arc; the manual's "
+              f"circle and {args.circle_moves} random ones, each to its end)")
+        circles = measure_circles(probe, args.circle_moves)
+        for name, counts_ in circles.items():
+            print(f"  {'circle, ' + name:26} max {max(counts_):4}, mean {statistics.fmean(counts_):6.1f} "
+                  f"instructions ({len(counts_)} cycles)")
     except ProbeFailure as failure:
         print(f"error: the probe failed: {failure}", file=sys.stderr)
         return 2
@@ -788,7 +873,15 @@ def main() -> int:
     for name, counts_ in lines.items():
         lines_ok &= within(f"one cycle of a 3-axis line driven by {name}", counts_, line_budgets.get(name), "",
                            "cycles")
-    status = 0 if planning_ok and stepping_ok and lines_ok else 1
+    circle_budgets: dict[str, int] = {}
+    for budget in args.circle_budget:
+        name, _, value = budget.partition("=")
+        circle_budgets[name] = int(value)
+    circles_ok = True
+    for name, counts_ in circles.items():
+        circles_ok &= within(f"one cycle of a circle driven by {name}", counts_, circle_budgets.get(name), "",
+                             "cycles")
+    status = 0 if planning_ok and stepping_ok and lines_ok and circles_ok else 1
     return status
 
 

@@ -6,7 +6,10 @@
 //! profile_table mcx514 --cycle-time SECONDS --initial-speed PPS --drive-speed PPS
 //!     --acceleration PPS_PER_S [--deceleration PPS_PER_S]
 //!     [--jerk PPS_PER_S2 [--decel-jerk PPS_PER_S2]]
-//!     [--decel-point PULSES | --no-decel]  --finish DX,DY[,DZ[,DU]]
+//!     [--decel-point PULSES | --no-decel]
+//!     (--finish DX,DY[,DZ[,DU]]                                  linear, 2–4 axes
+//!      | --finish DX,DY --centre CX,CY --direction cw|ccw        circular; finish 0,0 = full circle
+//!      | --segment line:DX,DY | --segment arc:CX,CY:FX,FY:cw|ccw …)   continuous, X and Y
 //! ```
 //!
 //! Every value is checked against its register before anything runs; a mistake is one line
@@ -17,7 +20,10 @@ use profilegen::format::mcx514::{
     ManualDecelerationPoint,
 };
 use profilegen::format::CycleTime;
-use profilegen::interpolation::{InterpolationState, Line};
+use profilegen::interpolation::{
+    Arc, CircleState, CircularDriving, ContinuousDriving, ContinuousInterpolation, ContinuousState,
+    Direction, InterpolationState, Line, Segment,
+};
 use profilegen::{
     DecelerationMode, Error, Mcx514Parameters, Mcx514SCurve, Mcx514ScurveParameters,
     Mcx514Trapezoidal, ProfileGenerator, State, StopKind,
@@ -27,7 +33,7 @@ use super::{number, whole, Ending, Format, Program, Usage, MAX_CYCLES};
 
 /// The options only this mode takes (besides `--acceleration`, `--deceleration` and `--jerk`,
 /// which it shares by name with the other modes, in its own units). `--no-decel` takes no value.
-pub const OPTIONS: [&str; 8] = [
+pub const OPTIONS: [&str; 11] = [
     "--cycle-time",
     "--initial-speed",
     "--drive-speed",
@@ -35,6 +41,9 @@ pub const OPTIONS: [&str; 8] = [
     "--decel-point",
     "--no-decel",
     "--finish",
+    "--centre",
+    "--direction",
+    "--segment",
     "--event",
 ];
 
@@ -47,6 +56,10 @@ const OTHER_MODES: [&str; 3] = ["--velocity", "--destination", "--start-velocity
 pub enum Geometry {
     /// `--finish DX,DY[,DZ[,DU]]`: a linear interpolation of 2–4 axes to that finish point.
     Line(Vec<i32>),
+    /// `--finish DX,DY --centre CX,CY --direction cw|ccw`: a circular interpolation.
+    Circle(Arc),
+    /// `--segment …` (repeatable): a continuous interpolation of lines and arcs on X and Y.
+    Segments(Vec<Segment>),
 }
 
 impl Geometry {
@@ -55,14 +68,72 @@ impl Geometry {
     pub fn axes(&self) -> usize {
         match self {
             Geometry::Line(finish) => finish.len(),
+            Geometry::Circle(_) | Geometry::Segments(_) => 2,
         }
     }
 
-    /// The driving axis's pulses: the long axis's, max|Δᵢ|, for a line.
+    /// The driving axis's pulses: the long axis's, max|Δᵢ|, for a line; the short axis's for an
+    /// arc; the sum over the segments (saturated: the profile refuses what is too long).
     fn steps(&self) -> u32 {
-        match self {
-            Geometry::Line(finish) => finish.iter().map(|d| d.unsigned_abs()).max().unwrap_or(0),
+        let steps = match self {
+            Geometry::Line(finish) => finish
+                .iter()
+                .map(|d| u64::from(d.unsigned_abs()))
+                .max()
+                .unwrap_or(0),
+            Geometry::Circle(arc) => arc.steps(),
+            Geometry::Segments(segments) => segments.iter().map(Segment::steps).sum(),
+        };
+        u32::try_from(steps).unwrap_or(u32::MAX)
+    }
+}
+
+/// `CX,CY` or `DX,DY`: two whole numbers of pulses (their ranges are the geometry's to check).
+fn pair(name: &str, text: &str, whole_text: &str) -> Result<[i32; 2], Usage> {
+    let parts: Vec<&str> = text.split(',').collect();
+    if parts.len() != 2 {
+        return Err(format!(
+            "{name} '{whole_text}': '{text}' is not X,Y (two whole numbers of pulses)"
+        ));
+    }
+    let mut out = [0; 2];
+    for (slot, part) in out.iter_mut().zip(&parts) {
+        *slot = part.trim().parse::<i32>().map_err(|_| {
+            format!("{name} '{whole_text}': '{part}' is not a whole number of pulses")
+        })?;
+    }
+    Ok(out)
+}
+
+/// `cw` or `ccw`.
+fn direction(name: &str, text: &str, whole_text: &str) -> Result<Direction, Usage> {
+    match text.trim() {
+        "cw" => Ok(Direction::Clockwise),
+        "ccw" => Ok(Direction::CounterClockwise),
+        _ => Err(format!("{name} '{whole_text}': '{text}' is not cw or ccw")),
+    }
+}
+
+/// `line:DX,DY` or `arc:CX,CY:FX,FY:cw|ccw`, relative to the previous segment's end.
+fn segment(text: &str) -> Result<Segment, Usage> {
+    let bad = |error: Error| format!("--segment '{text}': {error}");
+    let parts: Vec<&str> = text.split(':').collect();
+    match parts.as_slice() {
+        ["line", finish] => {
+            let finish = pair("--segment", finish, text)?;
+            Line::from_pulses(finish).map(Segment::Line).map_err(bad)
         }
+        ["arc", centre, finish, turn] => {
+            let centre = pair("--segment", centre, text)?;
+            let finish = pair("--segment", finish, text)?;
+            let turn = direction("--segment", turn, text)?;
+            Arc::from_pulses(centre, finish, turn)
+                .map(Segment::Arc)
+                .map_err(bad)
+        }
+        _ => Err(format!(
+            "--segment '{text}': not line:DX,DY or arc:CX,CY:FX,FY:cw|ccw"
+        )),
     }
 }
 
@@ -150,6 +221,7 @@ fn event(text: &str) -> Result<Event, Usage> {
 pub fn parse(program: Program, words: Vec<(String, String)>) -> Result<Options, Usage> {
     let mut given: Vec<(String, String)> = Vec::new();
     let mut events = Vec::new();
+    let mut segments = Vec::new();
     let (mut cycles, mut every, mut format, mut output) = (None, 1, Format::Table, None);
     for (name, text) in words {
         if OTHER_MODES.contains(&name.as_str()) {
@@ -159,6 +231,10 @@ pub fn parse(program: Program, words: Vec<(String, String)>) -> Result<Options, 
         }
         if name == "--event" {
             events.push(event(&text)?);
+            continue;
+        }
+        if name == "--segment" {
+            segments.push(segment(&text)?);
             continue;
         }
         if given.iter().any(|(seen, _)| *seen == name) {
@@ -199,7 +275,22 @@ pub fn parse(program: Program, words: Vec<(String, String)>) -> Result<Options, 
     let initial_text = required("--initial-speed")?;
     let drive_text = required("--drive-speed")?;
     let acceleration_text = required("--acceleration")?;
-    let finish_text = required("--finish")?;
+    if !segments.is_empty() {
+        if let Some(name) = ["--finish", "--centre", "--direction"]
+            .into_iter()
+            .find(|name| text_of(name).is_some())
+        {
+            let text = text_of(name).unwrap_or_default();
+            return Err(format!(
+                "{name} '{text}': not with --segment (the segments are the whole path)"
+            ));
+        }
+    }
+    let finish_text = if segments.is_empty() {
+        required("--finish")?
+    } else {
+        ""
+    };
 
     let cycle_seconds = number("--cycle-time", cycle_text)?;
     let cycle_time = CycleTime::from_seconds(cycle_seconds)
@@ -246,7 +337,62 @@ pub fn parse(program: Program, words: Vec<(String, String)>) -> Result<Options, 
         (None, Some(_)) => DecelerationMode::Disabled,
         (None, None) => DecelerationMode::Automatic,
     };
-    let geometry = Geometry::Line(finish(finish_text)?);
+    let geometry = match (text_of("--centre"), text_of("--direction")) {
+        _ if !segments.is_empty() => Geometry::Segments(segments),
+        (None, None) => Geometry::Line(finish(finish_text)?),
+        (Some(text), None) => {
+            return Err(format!(
+                "--centre '{text}': a circle needs --direction cw|ccw too"
+            ))
+        }
+        (None, Some(text)) => {
+            return Err(format!(
+                "--direction '{text}': only for a circle (give --centre CX,CY too)"
+            ))
+        }
+        (Some(centre_text), Some(turn_text)) => {
+            let centre = pair("--centre", centre_text, centre_text)?;
+            let turn = direction("--direction", turn_text, turn_text)?;
+            let end = pair("--finish", finish_text, finish_text)?;
+            let arc = Arc::from_pulses(centre, end, turn).map_err(|error| {
+                let (name, text) = match error {
+                    Error::OutOfRange {
+                        parameter: "finish point",
+                        ..
+                    }
+                    | Error::Unreachable {
+                        parameter: "finish point",
+                        ..
+                    } => ("--finish", finish_text),
+                    _ => ("--centre", centre_text),
+                };
+                format!("{name} '{text}': {error}")
+            })?;
+            Geometry::Circle(arc)
+        }
+    };
+    let continuous = matches!(geometry, Geometry::Segments(_));
+    if !matches!(geometry, Geometry::Line(_)) && deceleration_mode == DecelerationMode::Automatic {
+        let (name, text) = if continuous {
+            ("--segment", "")
+        } else {
+            ("--centre", text_of("--centre").unwrap_or_default())
+        };
+        let shown = if continuous {
+            name.to_owned()
+        } else {
+            format!("{name} '{text}'")
+        };
+        return Err(format!(
+            "{shown}: {} needs --decel-point PULSES or --no-decel (the MCX514 has no automatic \
+             deceleration there)",
+            if continuous {
+                "a continuous interpolation"
+            } else {
+                "a circle"
+            }
+        ));
+    }
     let profile = Mcx514Parameters {
         pulses: geometry.steps(),
         initial_speed,
@@ -257,8 +403,30 @@ pub fn parse(program: Program, words: Vec<(String, String)>) -> Result<Options, 
     };
     // The profile once, so what it refuses (SV above DV, AC ≠ DC or JK ≠ DJ with automatic
     // deceleration, a register that vanishes or overflows at this cycle time) is a command-line
-    // error.
-    Profile::new(profile, jerks, cycle_time).map_err(|error| blame(&given, &error))?;
+    // error. Circles and segments drive trapezoidally only, as on the chip.
+    if let (Some((_, _)), false) = (jerks, matches!(geometry, Geometry::Line(_))) {
+        let (name, text) = match text_of("--jerk") {
+            Some(text) => ("--jerk", text),
+            None => ("--decel-jerk", text_of("--decel-jerk").unwrap_or_default()),
+        };
+        return Err(format!(
+            "{name} '{text}': a circle or segments drive trapezoidally only (the MCX514's S-curve \
+             is for linear interpolation)"
+        ));
+    }
+    match &geometry {
+        Geometry::Line(_) => {
+            Profile::new(profile, jerks, cycle_time).map_err(|error| blame(&given, &error))?;
+        }
+        Geometry::Circle(arc) => {
+            arc.mcx514_profile(circular_driving(&profile), cycle_time)
+                .map_err(|error| blame(&given, &error))?;
+        }
+        Geometry::Segments(_) => {
+            ContinuousInterpolation::new(continuous_driving(&profile), cycle_time)
+                .map_err(|error| blame(&given, &error))?;
+        }
+    }
     if program == Program::Plot && output.is_none() {
         return Err("--output: missing (the SVG file to write)".into());
     }
@@ -304,6 +472,7 @@ fn blame(given: &[(String, String)], error: &Error) -> String {
         }
         "deceleration increasing rate" => "--jerk",
         "finish point" => "--finish",
+        "arc steps" => "--centre",
         _ => return error.to_string(),
     };
     match given.iter().find(|(seen, _)| seen == name) {
@@ -357,6 +526,47 @@ pub struct Row {
     pub axes: Vec<i32>,
 }
 
+impl From<CircleState> for Row {
+    fn from(state: CircleState) -> Self {
+        Row {
+            driving: state.driving,
+            axes: state.axes.to_vec(),
+        }
+    }
+}
+
+impl From<ContinuousState> for Row {
+    fn from(state: ContinuousState) -> Self {
+        Row {
+            driving: state.driving,
+            axes: state.axes.to_vec(),
+        }
+    }
+}
+
+/// The circle's driving registers from the checked profile (trapezoidal; the deceleration mode
+/// is manual or disabled, checked when parsed).
+fn circular_driving(profile: &Mcx514Parameters) -> CircularDriving {
+    CircularDriving {
+        initial_speed: profile.initial_speed,
+        drive_speed: profile.drive_speed,
+        acceleration: profile.acceleration,
+        deceleration: profile.deceleration,
+        jerk: None,
+        deceleration_jerk: None,
+        deceleration_mode: profile.deceleration_mode,
+    }
+}
+
+fn continuous_driving(profile: &Mcx514Parameters) -> ContinuousDriving {
+    ContinuousDriving {
+        initial_speed: profile.initial_speed,
+        drive_speed: profile.drive_speed,
+        acceleration: profile.acceleration,
+        deceleration: profile.deceleration,
+    }
+}
+
 impl<const N: usize> From<InterpolationState<N>> for Row {
     fn from(state: InterpolationState<N>) -> Self {
         Row {
@@ -373,15 +583,101 @@ pub fn run<E>(
     options: &Options,
     visit: impl FnMut(u64, &Row) -> Result<(), E>,
 ) -> Result<Ending, E> {
-    let mut profile = Profile::new(options.profile, options.jerks, options.cycle_time)
-        .expect("checked when parsed");
-    let profile = profile.axis();
     match &options.geometry {
-        Geometry::Line(finish) => match finish.len() {
-            2 => run_line(options, line::<2>(finish), profile, visit),
-            3 => run_line(options, line::<3>(finish), profile, visit),
-            _ => run_line(options, line::<4>(finish), profile, visit),
-        },
+        Geometry::Line(finish) => {
+            let mut profile = Profile::new(options.profile, options.jerks, options.cycle_time)
+                .expect("checked when parsed");
+            let profile = profile.axis();
+            match finish.len() {
+                2 => run_line(options, line::<2>(finish), profile, visit),
+                3 => run_line(options, line::<3>(finish), profile, visit),
+                _ => run_line(options, line::<4>(finish), profile, visit),
+            }
+        }
+        Geometry::Circle(arc) => {
+            let mut profile = arc
+                .mcx514_profile(circular_driving(&options.profile), options.cycle_time)
+                .expect("checked when parsed");
+            let mut interpolation = arc.drive(&mut profile);
+            let first = interpolation.state().into();
+            drive_rows(options, first, visit, |stop| match stop {
+                Some(kind) => {
+                    interpolation.stop(kind);
+                    None
+                }
+                None => Some((interpolation.step().into(), interpolation.is_complete())),
+            })
+        }
+        Geometry::Segments(segments) => {
+            let mut run = ContinuousInterpolation::new(
+                continuous_driving(&options.profile),
+                options.cycle_time,
+            )
+            .expect("checked when parsed");
+            // The queue is refilled before every cycle; the last segment carries the point.
+            let mut queued = 0;
+            let point = match options.profile.deceleration_mode {
+                DecelerationMode::Manual(point) => Some(point),
+                _ => None,
+            };
+            let mut refill = move |run: &mut ContinuousInterpolation| {
+                while run.free() > 0 && queued < segments.len() {
+                    let result = match point {
+                        Some(point) if queued + 1 == segments.len() => {
+                            run.push_last(segments[queued], point)
+                        }
+                        _ => run.push(segments[queued]),
+                    };
+                    if result.is_err() {
+                        // After a stop or a dry end: the rest is abandoned.
+                        queued = segments.len();
+                        break;
+                    }
+                    queued += 1;
+                }
+            };
+            refill(&mut run);
+            let first = run.state().into();
+            drive_rows(options, first, visit, |stop| match stop {
+                Some(kind) => {
+                    run.stop(kind);
+                    None
+                }
+                None => {
+                    refill(&mut run);
+                    Some((run.step().into(), run.is_complete()))
+                }
+            })
+        }
+    }
+}
+
+/// The cycle loop of a geometry that is not a line: `advance(Some(stop))` applies a stop,
+/// `advance(None)` steps one cycle and returns its row and whether the run is complete.
+fn drive_rows<E>(
+    options: &Options,
+    first: Row,
+    mut visit: impl FnMut(u64, &Row) -> Result<(), E>,
+    mut advance: impl FnMut(Option<StopKind>) -> Option<(Row, bool)>,
+) -> Result<Ending, E> {
+    visit(0, &first)?;
+    let mut events = options.events.iter().peekable();
+    let (mut cycle, mut complete) = (0u64, false);
+    loop {
+        match options.cycles {
+            Some(cycles) if cycle >= cycles => return Ok(Ending::Done),
+            Some(_) => {}
+            None if events.peek().is_none() && complete => return Ok(Ending::Done),
+            None if cycle >= MAX_CYCLES => return Ok(Ending::CutShort),
+            None => {}
+        }
+        cycle += 1;
+        while let Some(event) = events.next_if(|event| event.cycle <= cycle) {
+            advance(Some(event.stop));
+        }
+        let (row, done) = advance(None).expect("a step returns a row");
+        complete = done;
+        visit(cycle, &row)?;
     }
 }
 

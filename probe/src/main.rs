@@ -22,6 +22,10 @@
 //!   linear interpolation (SPEC §12.3) driven by one of the profiles (`mcx514` the MCX514
 //!   trapezoid, `trapezoid` the crate's `Trapezoidal`, `mcx514_scurve` the MCX514 S-curve), stepped one cycle per call through
 //!   `LinearInterpolation::step`: the measured cost is the profile plus the geometry (SPEC §16).
+//! - `probe_circle_setup(words)`, `probe_circle_step_<profile>()`, `probe_circle_complete(p)`,
+//!   `probe_circle_axes()`: an MCX514 circular interpolation (SPEC §12.4) driven by
+//!   `Mcx514Trapezoidal` or the crate's `Trapezoidal`; a step is the profile's cycle plus the
+//!   arc's O(1) jump (SPEC §16's 150 is for the two together).
 //! - `probe_selftest_panic(1)`, `probe_selftest_runaway()`: a panic and an endless loop, so the
 //!   harness can check that it catches both.
 #![no_std]
@@ -36,7 +40,9 @@ use core::sync::atomic::{AtomicU32, Ordering};
 use profilegen::format::juno::{Acceleration, TargetVelocity};
 use profilegen::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
 use profilegen::format::{mcx514, CycleTime};
-use profilegen::interpolation::{InterpolationState, Line, LinearInterpolation};
+use profilegen::interpolation::{
+    Arc, ArcWalk, CircularDriving, Direction, InterpolationState, Line, LinearInterpolation,
+};
 use profilegen::{
     DecelerationMode, Error, Mcx514Parameters, Mcx514SCurve, Mcx514ScurveParameters,
     Mcx514Trapezoidal, ProfileGenerator, SCurve, ScurveParameters, Trapezoidal,
@@ -469,6 +475,160 @@ pub unsafe extern "C" fn probe_line_complete(out: *mut i32) -> u32 {
         unsafe { out.add(i).write(*axis) };
     }
     u32::from(complete)
+}
+
+/// A circular interpolation: the driving profile and the walk along the arc.
+struct Circle<G> {
+    profile: G,
+    walk: ArcWalk,
+}
+
+static CIRCLE_MCX514: Other<Circle<Mcx514Trapezoidal>> =
+    Other(UnsafeCell::new(MaybeUninit::uninit()));
+static CIRCLE_TRAPEZOID: Other<Circle<Trapezoidal>> = Other(UnsafeCell::new(MaybeUninit::uninit()));
+
+/// Sets up a stepped circle from `words`: `[0..2]` the centre, `[2..4]` the finish point (pulses
+/// relative to the start, `i32` bits), `[4]` 1 for counter-clockwise, then the profile `[5]`:
+///
+/// - 0, the MCX514 trapezoid: `[6]` SV, `[7]` DV (pps), `[8]` AC, `[9]` DC (pps/s), `[10]` the
+///   manual deceleration point, `[11]` the cycle time in µs;
+/// - 1, the crate's `Trapezoidal`: `[6]` maximum velocity (16.16), `[7]` acceleration, `[8]`
+///   deceleration (8.24), raw bits; the destination is the arc's steps.
+///
+/// Returns 0 on success, 1 when refused.
+///
+/// # Safety
+/// `words` points to 12 readable, aligned words.
+#[no_mangle]
+pub unsafe extern "C" fn probe_circle_setup(words: *const u32) -> u32 {
+    // SAFETY: the caller provides 12 words.
+    let word = |i: usize| unsafe { words.add(i).read() };
+    let direction = if word(4) == 1 {
+        Direction::CounterClockwise
+    } else {
+        Direction::Clockwise
+    };
+    let Ok(arc) = Arc::from_pulses(
+        [word(0) as i32, word(1) as i32],
+        [word(2) as i32, word(3) as i32],
+        direction,
+    ) else {
+        return 1;
+    };
+    if word(5) == 0 {
+        let profile = || -> Result<Mcx514Trapezoidal, Error> {
+            let cycle = CycleTime::from_seconds(f64::from(word(11)) * 1e-6)?;
+            arc.mcx514_profile(
+                CircularDriving {
+                    initial_speed: mcx514::InitialSpeed::from_bits(word(6))?,
+                    drive_speed: mcx514::DriveSpeed::from_bits(word(7))?,
+                    acceleration: mcx514::Acceleration::from_bits(word(8))?,
+                    deceleration: mcx514::Deceleration::from_bits(word(9))?,
+                    jerk: None,
+                    deceleration_jerk: None,
+                    deceleration_mode: DecelerationMode::Manual(
+                        mcx514::ManualDecelerationPoint::from_bits(word(10))?,
+                    ),
+                },
+                cycle,
+            )
+        };
+        let Ok(profile) = profile() else {
+            return 1;
+        };
+        let circle = Circle {
+            profile,
+            walk: arc.walk(),
+        };
+        // SAFETY: single-threaded; no reference to the slot outlives a call.
+        unsafe { (*CIRCLE_MCX514.0.get()).write(circle) };
+    } else {
+        let profile = || -> Result<Trapezoidal, Error> {
+            Trapezoidal::new(TrapezoidalParameters {
+                destination: i32::try_from(arc.steps()).unwrap_or(i32::MAX),
+                max_velocity: TargetVelocity::from_bits(word(6) as i32)?,
+                acceleration: Acceleration::from_bits(word(7))?,
+                deceleration: Acceleration::from_bits(word(8))?,
+                start_velocity: TargetVelocity::ZERO,
+            })
+        };
+        let Ok(profile) = profile() else {
+            return 1;
+        };
+        let circle = Circle {
+            profile,
+            walk: arc.walk(),
+        };
+        // SAFETY: as above.
+        unsafe { (*CIRCLE_TRAPEZOID.0.get()).write(circle) };
+    }
+    0
+}
+
+/// One cycle of a circle: the profile's step and the arc's jump to the step it reached (what
+/// `CircularInterpolation::step` does), both axes stored with volatile writes as `output` does
+/// for the line; returns the driving position.
+#[inline(always)]
+fn circle_step<G: ProfileGenerator>(circle: &mut Circle<G>) -> i64 {
+    let driving = circle.profile.step();
+    // The whole steps: the position's integer part, never negative for these profiles.
+    let steps = (driving.position.to_bits() >> 32).max(0) as u64;
+    let axes = circle.walk.advance_to(steps);
+    let out = LINE_AXES.0.get().cast::<i32>();
+    for (i, axis) in axes.into_iter().enumerate() {
+        // SAFETY: aligned words of a static (three, two used); single-threaded.
+        unsafe { out.add(i).write_volatile(axis) };
+    }
+    driving.position.to_bits()
+}
+
+/// Advances the MCX514-driven circle one cycle.
+///
+/// # Safety
+/// `probe_circle_setup` succeeded before with profile 0.
+#[no_mangle]
+pub unsafe extern "C" fn probe_circle_step_mcx514() -> i64 {
+    // SAFETY: initialized by probe_circle_setup (the caller's contract); single-threaded.
+    circle_step(unsafe { (*CIRCLE_MCX514.0.get()).assume_init_mut() })
+}
+
+/// Advances the trapezoid-driven circle one cycle.
+///
+/// # Safety
+/// `probe_circle_setup` succeeded before with profile 1.
+#[no_mangle]
+pub unsafe extern "C" fn probe_circle_step_trapezoid() -> i64 {
+    // SAFETY: initialized by probe_circle_setup (the caller's contract); single-threaded.
+    circle_step(unsafe { (*CIRCLE_TRAPEZOID.0.get()).assume_init_mut() })
+}
+
+/// 1 when the stepped circle's profile (0 MCX514, 1 trapezoid) is complete, else 0; the axes
+/// are in `LINE_AXES`.
+///
+/// # Safety
+/// `probe_circle_setup` succeeded before with that profile.
+#[no_mangle]
+pub unsafe extern "C" fn probe_circle_complete(profile: u32) -> u32 {
+    // SAFETY: initialized by probe_circle_setup (the caller's contract); single-threaded.
+    let complete = if profile == 0 {
+        unsafe { (*CIRCLE_MCX514.0.get()).assume_init_ref() }
+            .profile
+            .is_complete()
+    } else {
+        unsafe { (*CIRCLE_TRAPEZOID.0.get()).assume_init_ref() }
+            .profile
+            .is_complete()
+    };
+    u32::from(complete)
+}
+
+/// The stepped circle's axes after the last step: x in the low word, y in the high.
+#[no_mangle]
+pub extern "C" fn probe_circle_axes() -> u64 {
+    let axes = LINE_AXES.0.get().cast::<i32>();
+    // SAFETY: aligned words of a static, written by the last step; single-threaded.
+    let (x, y) = unsafe { (axes.read_volatile(), axes.add(1).read_volatile()) };
+    u64::from(x as u32) | (u64::from(y as u32) << 32)
 }
 
 /// Panics when `panic` is non-zero: the harness's check that a panic is caught and located.

@@ -66,7 +66,7 @@ impl<const N: usize> Line<N> {
 
 /// The whole steps of a driving position: its integer part (I32F32 bits shifted right by 32, a
 /// floor), clamped to 0 … u32::MAX (the walk clamps to its own end).
-fn steps_of(state: &State) -> u32 {
+pub(super) fn steps_of(state: &State) -> u32 {
     let whole = state.position.to_bits() >> 32;
     // i64 → u32: negative positions are step 0; the integer part is < 2³¹ so the cast is exact.
     whole.max(0) as u32

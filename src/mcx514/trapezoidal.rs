@@ -209,6 +209,38 @@ impl Mcx514Trapezoidal {
         })
     }
 
+    /// Continuous interpolation (SPEC §12.5): moves the finish point to `pulses` (≥ the pulses
+    /// output so far) and the manual deceleration point to `manual_point` (`None`: none yet, so
+    /// no deceleration until one is given), while the move runs. Returns `false`, changing
+    /// nothing, once the move has ended (it reached its finish point, or was stopped after it
+    /// started), or for a move with automatic deceleration or deceleration disabled (continuous
+    /// runs are built with a manual point); a move that has not started yet may be given its
+    /// first finish point.
+    pub(crate) fn continue_to(&mut self, pulses: u32, manual_point: Option<u32>) -> bool {
+        let finish = i64::from(pulses) << 32;
+        let position = self.state.position.to_bits();
+        let moved = position != 0 || self.state.velocity != I32F32::ZERO;
+        if (self.complete && moved)
+            || self.stopping
+            || finish < position
+            || self.profile.automatic
+            || self.profile.disabled
+        {
+            return false;
+        }
+        // As in `new`: a point past 2³¹ − 1 pulses is never reached.
+        let point = manual_point.map_or(i64::MAX, |point| {
+            i64::from(point.min(i32::MAX as u32)) << 32
+        });
+        self.profile.finish = finish;
+        self.profile.manual_point = point;
+        if self.phase != Phase::Decelerating {
+            self.trigger = point;
+        }
+        self.complete = finish == position;
+        true
+    }
+
     /// The velocity of the next cycle, before the cut to the pulses left (raw I32F32), with the
     /// phase it leaves the move in. The rules (SPEC §12.2): SV at once; up by AC to DV; down by
     /// DC to SV from the cycle that begins at or past the trigger; a smooth stop decelerates at
@@ -276,6 +308,9 @@ impl Mcx514Trapezoidal {
 }
 
 impl ProfileGenerator for Mcx514Trapezoidal {
+    // Inlined into each caller: called from several interpolations, it would otherwise stay an
+    // out-of-line call returning the whole state through memory.
+    #[inline]
     fn step(&mut self) -> State {
         let (position, before) = (self.state.position.to_bits(), self.state.velocity.to_bits());
         let velocity = if self.complete {
