@@ -29,8 +29,8 @@ use core::mem::MaybeUninit;
 use core::panic::PanicInfo;
 use core::sync::atomic::{AtomicU32, Ordering};
 
-use profilegen::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
 use profilegen::format::juno::{Acceleration, TargetVelocity};
+use profilegen::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
 use profilegen::{
     Error, ProfileGenerator, SCurve, ScurveParameters, Trapezoidal, TrapezoidalParameters,
     VelocityContouring, VelocityParameters,
@@ -255,8 +255,8 @@ pub unsafe extern "C" fn probe_trapezoid_complete() -> u32 {
 }
 
 /// Gives the stepped trapezoid a command in motion: 0 a smooth stop, 1 an abrupt stop, 2 the new
-/// destination `value` (counts), 3 the new maximum velocity `value` (16.16 bits; refused values
-/// change nothing).
+/// destination `value` (counts), 3 the new maximum velocity `value` (16.16 bits), 4 the new
+/// acceleration and 5 the new deceleration `value` (8.24 bits); refused values change nothing.
 ///
 /// # Safety
 /// `probe_trapezoid_setup` succeeded before.
@@ -268,8 +268,16 @@ pub unsafe extern "C" fn probe_trapezoid_command(command: u32, value: i32) {
         0 => axis.stop(profilegen::StopKind::Smooth),
         1 => axis.stop(profilegen::StopKind::Abrupt),
         2 => axis.set_destination(value),
-        _ => {
+        3 => {
             let _ = TargetVelocity::from_bits(value).and_then(|v| axis.set_max_velocity(v));
+        }
+        4 => {
+            let _ = Acceleration::from_bits(value as u32).and_then(|a| axis.set_acceleration(a));
+        }
+        _ => {
+            if let Ok(d) = Acceleration::from_bits(value as u32) {
+                axis.set_deceleration(d);
+            }
         }
     }
 }
