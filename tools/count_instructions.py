@@ -559,6 +559,54 @@ def measure_trapezoid_commands(probe: Probe, moves: int, after: int = 3000) -> t
     return within, beyond, commands
 
 
+def measure_other_commands(probe: Probe, moves: int, seed: int = 14) -> tuple[list[int], list[int]]:
+    """Per-cycle counts after commands in motion of the S-curve (a smooth or abrupt stop, or both,
+    at a random cycle of one of the planned random moves short enough to step) and of velocity
+    contouring (new velocities, rates and stops, several in a row), every cycle from the first
+    command to the end (at most 5,000 cycles after the last)."""
+    import math
+    import random
+    rng = random.Random(seed)
+    log_uniform = lambda low, high: int(math.exp(rng.uniform(math.log(low), math.log(high))))
+    scurve, velocity_counts = [], []
+    index = 0
+    stepped = 0
+    while stepped < moves and index < 20 * moves:
+        move = probe.move(index)
+        index += 1
+        total = probe.call("probe_step_setup", *move).u64
+        if total > 3000:
+            continue
+        stepped += 1
+        for _ in range(rng.randint(0, max(0, total - 1))):
+            probe.call("probe_step")
+        for kind in rng.choice([[0], [1], [0, 1], [1, 0]]):
+            probe.call("probe_stop", kind)
+            for _ in range(rng.choice([0, 1, 3])):
+                scurve.append(probe.call("probe_step").instructions)
+        for _ in range(5000):
+            scurve.append(probe.call("probe_step").instructions)
+            if probe.call("probe_complete").r0:
+                break
+        scurve += [probe.call("probe_step").instructions for _ in range(2)]
+    for _ in range(moves):
+        velocity = log_uniform(1, 2**31 - 1) * rng.choice([-1, 1])
+        acceleration = log_uniform(1 << 8, 2**31 - 1)
+        if probe.call("probe_velocity_setup", velocity & 0xFFFF_FFFF, acceleration, 0).r0:
+            raise ProbeFailure("velocity move refused")
+        for _ in range(rng.randint(0, 200)):
+            probe.call("probe_velocity_step")
+        for _ in range(rng.randint(1, 4)):
+            kind = rng.choice([0, 1, 2, 2, 3, 4])
+            value = {2: log_uniform(1, 2**31 - 1) * rng.choice([-1, 1]),
+                     3: log_uniform(1 << 8, 2**31 - 1), 4: rng.choice([0, log_uniform(1 << 8, 2**31 - 1)])}.get(kind, 0)
+            probe.call("probe_velocity_command", kind, value & 0xFFFF_FFFF)
+            for _ in range(rng.choice([0, 1, 50])):
+                velocity_counts.append(probe.call("probe_velocity_step").instructions)
+        velocity_counts += [probe.call("probe_velocity_step").instructions for _ in range(1000)]
+    return scurve, velocity_counts
+
+
 def probe_rng_gap(index: int) -> int:
     """The cycles between two commands of a script: 0, 1 and 7 in turn (commands before the
     first one's runs have begun, and a few cycles into them)."""
@@ -720,6 +768,13 @@ def main() -> int:
                       f"instructions ({len(beyond)} cycles; reported, not budgeted: issue #12)")
             print(f"  {'the commands (planning)':26} max {max(commands):4}, mean {statistics.fmean(commands):6.1f} "
                   f"instructions ({len(commands)} commands)")
+            scurve_after, velocity_after = measure_other_commands(probe, args.command_moves)
+            others["VelocityContouring after commands"] = velocity_after
+            print(f"  {'SCurve after stops':26} max {max(scurve_after):4}, mean "
+                  f"{statistics.fmean(scurve_after):6.1f} instructions ({len(scurve_after)} cycles; reported, "
+                  "not budgeted: the smooth stop decides every cycle, issue #12)")
+            print(f"  {'VelocityContouring after commands':26} max {max(velocity_after):4}, mean "
+                  f"{statistics.fmean(velocity_after):6.1f} instructions ({len(velocity_after)} cycles)")
     except ProbeFailure as failure:
         print(f"error: the probe failed: {failure}", file=sys.stderr)
         return 2
