@@ -463,6 +463,37 @@ def random_trapezoid_moves(n: int, seed: int = 12) -> list[tuple[int, int, int, 
     return moves
 
 
+def full_range_trapezoid_moves(n: int, seed: int = 15) -> list[tuple[int, int, int, int, int]]:
+    """Deterministic moves across the whole register ranges (set-up only, not stepped): distance,
+    maximum velocity, acceleration and deceleration (zero a third of the time) log-uniform over
+    their registers, a starting velocity (uniform below the maximum) two thirds of the time."""
+    import math
+    import random
+    rng = random.Random(seed)
+    log_uniform = lambda low, high: int(math.exp(rng.uniform(math.log(low), math.log(high))))
+    moves = []
+    for _ in range(n):
+        distance = min(log_uniform(1, 2**31 - 1), 2**31 - 1) * rng.choice([-1, 1])
+        velocity = log_uniform(1, 2**31 - 1)
+        acceleration = log_uniform(1, 2**31 - 1)
+        deceleration = 0 if rng.random() < 1 / 3 else log_uniform(1, 2**31 - 1)
+        start = int(velocity * rng.random()) if rng.random() < 2 / 3 else 0
+        moves.append((max(-2**31, distance), velocity, acceleration, deceleration, start))
+    return moves
+
+
+def measure_setups(probe: Probe, moves: list[tuple[int, int, int, int, int]]) -> list[tuple[int, tuple]]:
+    """The trapezoid's set-up count (`probe_trapezoid_setup`) of each move."""
+    counts = []
+    for move in moves:
+        probe.uc.mem_write(SCRATCH_PAGE, struct.pack("<5I", *(w & 0xFFFF_FFFF for w in move)))
+        setup = probe.call("probe_trapezoid_setup", SCRATCH_PAGE)
+        if setup.r0:
+            raise ProbeFailure(f"trapezoid move refused: {move}")
+        counts.append((setup.instructions, move))
+    return counts
+
+
 def measure_other_generators(probe: Probe, moves: int) -> tuple[dict[str, list[int]], list[int]]:
     """Per-cycle counts of VelocityContouring and Trapezoidal, and the trapezoid's set-up counts."""
     steps: dict[str, list[int]] = {"VelocityContouring": [], "Trapezoidal": []}
@@ -682,6 +713,9 @@ def main() -> int:
     parser.add_argument("--verify-steps", type=int, default=2000, help="steps checked by --verify (default 2000)")
     parser.add_argument("--trapezoid-moves", type=int, default=200,
                         help="random trapezoid moves stepped to the end (default %(default)s)")
+    parser.add_argument("--setup-moves", type=int, default=0,
+                        help="random trapezoid moves across the whole register ranges whose set-up is "
+                             "counted (reported; default %(default)s)")
     parser.add_argument("--command-moves", type=int, default=300,
                         help="random trapezoid moves given commands in motion (default %(default)s)")
     parser.add_argument("--functions", type=int, default=8,
@@ -756,6 +790,13 @@ def main() -> int:
                   f"({len(counts_)} cycles)")
         print(f"  {'Trapezoid set-up (plans)':26} max {max(setups):4}, mean {statistics.fmean(setups):6.1f} "
               f"instructions ({len(setups)} moves)")
+        if args.setup_moves:
+            full = measure_setups(probe, full_range_trapezoid_moves(args.setup_moves))
+            counts_only = sorted(n for n, _ in full)
+            worst_setup = max(full)
+            print(f"  {'Trapezoid set-up, whole ranges':26} max {worst_setup[0]}, p99 {percentile(counts_only, 99)}, "
+                  f"mean {statistics.fmean(counts_only):.1f} instructions ({len(full)} moves; over 20,000: "
+                  f"{sum(1 for n in counts_only if n > 20_000)}; worst {worst_setup[1]}; reported, not budgeted)")
         if args.command_moves:
             print(f"== the trapezoid after commands in motion ({args.command_moves} random moves, one to "
                   "three commands each, every cycle from the first command to the end)")
