@@ -813,7 +813,7 @@ def main() -> int:
             others["VelocityContouring after commands"] = velocity_after
             print(f"  {'SCurve after stops':26} max {max(scurve_after):4}, mean "
                   f"{statistics.fmean(scurve_after):6.1f} instructions ({len(scurve_after)} cycles; reported, "
-                  "not budgeted: the smooth stop decides every cycle, issue #12)")
+                  "not budgeted: the smooth stop decides every cycle, by a closed form, issue #12)")
             print(f"  {'VelocityContouring after commands':26} max {max(velocity_after):4}, mean "
                   f"{statistics.fmean(velocity_after):6.1f} instructions ({len(velocity_after)} cycles)")
     except ProbeFailure as failure:
