@@ -7,11 +7,15 @@
 //! The trapezoid's comparison covers the moves whose starting velocity is at most the
 //! deceleration, so that the last cycle's drop from it is an ordinary deceleration: issue #12
 //! also changed the behaviour beyond that (the move may now end with a drop from the starting
-//! velocity, `tests/trapezoidal.rs`), on purpose.
+//! velocity, `tests/trapezoidal.rs`), on purpose. The second part of issue #12 then laid out as
+//! runs the cycles that still decided one by one (above a lowered maximum velocity, too fast to
+//! stop on a nearer destination, the abrupt stop's cycle): those tests step it beside the
+//! trapezoid as the first part left it (`tests/previous/planned/`), for every starting velocity.
 
 mod previous;
 mod strategies;
 
+use previous::planned::PlannedTrapezoidal;
 use previous::trapezoidal::PreviousTrapezoidal;
 use previous::velocity::PreviousVelocity;
 use profilegen::format::juno::{Acceleration, TargetVelocity};
@@ -152,6 +156,57 @@ fn compare(
     Ok(())
 }
 
+/// Gives `command` to both (a refused one, a starting velocity above the maximum, to neither).
+fn give_planned(new: &mut Trapezoidal, old: &mut PlannedTrapezoidal, command: Command) {
+    match command {
+        Command::Destination(d) => {
+            new.set_destination(d);
+            old.set_destination(d);
+        }
+        Command::MaxVelocity(v) => {
+            if new.set_max_velocity(v).is_ok() {
+                old.set_max_velocity(v).unwrap();
+            }
+        }
+        Command::Acceleration(a) => {
+            new.set_acceleration(a).unwrap();
+            old.set_acceleration(a).unwrap();
+        }
+        Command::Deceleration(d) => {
+            new.set_deceleration(d);
+            old.set_deceleration(d);
+        }
+        Command::StartVelocity(s) => {
+            if new.set_start_velocity(s).is_ok() {
+                old.set_start_velocity(s).unwrap();
+            }
+        }
+        Command::Stop(kind) => {
+            new.stop(kind);
+            old.stop(kind);
+        }
+    }
+}
+
+/// Steps both `cycles` times (or until both are complete and stay so), comparing every state
+/// and whether each is complete.
+fn compare_planned(
+    new: &mut Trapezoidal,
+    old: &mut PlannedTrapezoidal,
+    cycles: u64,
+) -> Result<(), TestCaseError> {
+    for cycle in 0..cycles {
+        let (a, b) = (new.step(), old.step());
+        prop_assert_eq!(a, b, "cycle {} after the last command", cycle);
+        prop_assert_eq!(new.is_complete(), old.is_complete(), "cycle {}", cycle);
+        if new.is_complete() {
+            prop_assert_eq!(new.step(), old.step());
+            break;
+        }
+    }
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(2_000))]
 
@@ -196,5 +251,50 @@ proptest! {
                 VelocityCommand::Stop(kind) => { new.stop(kind); old.stop(kind); }
             }
         }
+    }
+
+    /// Any move (any starting velocity) with up to 8 commands at random cycles, some of them a
+    /// few cycles apart (so that commands land in the cycles a lowered maximum velocity or a
+    /// nearer destination leaves above the plan), against the trapezoid that decided those
+    /// cycles one by one.
+    #[test]
+    fn trapezoid_as_planned_with_commands_in_motion(
+        move_ in trapezoidal_move(),
+        script in prop::collection::vec(
+            (prop_oneof![0u64..2_000, 0u64..4], command()), 1..8),
+    ) {
+        let mut new = Trapezoidal::new(move_).unwrap();
+        let mut old = PlannedTrapezoidal::new(move_).unwrap();
+        for (gap, command) in script {
+            compare_planned(&mut new, &mut old, gap)?;
+            give_planned(&mut new, &mut old, command);
+        }
+        compare_planned(&mut new, &mut old, 1_000_000)?;
+    }
+
+    /// An abrupt stop in motion with commands before its cycle (a new maximum velocity resumes
+    /// the move after it, other commands change the plan that follows) and after it, against
+    /// the trapezoid that took the stop's cycle apart from its runs.
+    #[test]
+    fn trapezoid_as_planned_around_an_abrupt_stop(
+        move_ in trapezoidal_move(),
+        gap in 0u64..2_000,
+        before in prop::collection::vec(command(), 0..3),
+        after in prop::collection::vec((0u64..3, command()), 0..3),
+    ) {
+        let mut new = Trapezoidal::new(move_).unwrap();
+        let mut old = PlannedTrapezoidal::new(move_).unwrap();
+        compare_planned(&mut new, &mut old, gap)?;
+        give_planned(&mut new, &mut old, Command::Stop(profilegen::StopKind::Abrupt));
+        for command in before {
+            give_planned(&mut new, &mut old, command);
+        }
+        // Often resumed: a new maximum velocity before the stop's cycle.
+        give_planned(&mut new, &mut old, Command::MaxVelocity(move_.max_velocity));
+        for (gap, command) in after {
+            compare_planned(&mut new, &mut old, gap)?;
+            give_planned(&mut new, &mut old, command);
+        }
+        compare_planned(&mut new, &mut old, 1_000_000)?;
     }
 }

@@ -175,6 +175,32 @@ pub unsafe extern "C" fn probe_step() -> i64 {
     axis.step().position.to_bits()
 }
 
+/// Stops the stepped S-curve generator in motion: 0 smoothly, else abruptly.
+///
+/// # Safety
+/// `probe_step_setup` succeeded before.
+#[no_mangle]
+pub unsafe extern "C" fn probe_stop(kind: u32) {
+    // SAFETY: initialized by probe_step_setup (the caller's contract); single-threaded.
+    let axis = unsafe { (*AXIS.0.get()).assume_init_mut() };
+    axis.stop(if kind == 0 {
+        profilegen::StopKind::Smooth
+    } else {
+        profilegen::StopKind::Abrupt
+    });
+}
+
+/// 1 when the stepped S-curve generator is complete, else 0.
+///
+/// # Safety
+/// `probe_step_setup` succeeded before.
+#[no_mangle]
+pub unsafe extern "C" fn probe_complete() -> u32 {
+    // SAFETY: initialized by probe_step_setup (the caller's contract); single-threaded.
+    let axis = unsafe { (*AXIS.0.get()).assume_init_ref() };
+    u32::from(axis.is_complete())
+}
+
 /// A generator slot like [`AXIS`], for the other generators.
 struct Other<T>(UnsafeCell<MaybeUninit<T>>);
 
@@ -214,6 +240,35 @@ pub unsafe extern "C" fn probe_velocity_step() -> i64 {
     // SAFETY: initialized by probe_velocity_setup (the caller's contract); single-threaded.
     let axis = unsafe { (*VELOCITY.0.get()).assume_init_mut() };
     axis.step().position.to_bits()
+}
+
+/// Gives the stepped velocity-contouring generator a command in motion: 0 a smooth stop, 1 an
+/// abrupt stop, 2 the new target velocity `value` (16.16 bits), 3 the new acceleration and 4 the
+/// new deceleration `value` (8.24 bits); refused values change nothing.
+///
+/// # Safety
+/// `probe_velocity_setup` succeeded before.
+#[no_mangle]
+pub unsafe extern "C" fn probe_velocity_command(command: u32, value: i32) {
+    // SAFETY: initialized by probe_velocity_setup (the caller's contract); single-threaded.
+    let axis = unsafe { (*VELOCITY.0.get()).assume_init_mut() };
+    match command {
+        0 => axis.stop(profilegen::StopKind::Smooth),
+        1 => axis.stop(profilegen::StopKind::Abrupt),
+        2 => {
+            if let Ok(v) = TargetVelocity::from_bits(value) {
+                axis.set_velocity(v);
+            }
+        }
+        3 => {
+            let _ = Acceleration::from_bits(value as u32).and_then(|a| axis.set_acceleration(a));
+        }
+        _ => {
+            if let Ok(d) = Acceleration::from_bits(value as u32) {
+                axis.set_deceleration(d);
+            }
+        }
+    }
 }
 
 /// Sets up the stepped trapezoid from `words[0..5]`: destination, maximum velocity (16.16),
@@ -268,8 +323,8 @@ pub unsafe extern "C" fn probe_trapezoid_complete() -> u32 {
 }
 
 /// Gives the stepped trapezoid a command in motion: 0 a smooth stop, 1 an abrupt stop, 2 the new
-/// destination `value` (counts), 3 the new maximum velocity `value` (16.16 bits; refused values
-/// change nothing).
+/// destination `value` (counts), 3 the new maximum velocity `value` (16.16 bits), 4 the new
+/// acceleration and 5 the new deceleration `value` (8.24 bits); refused values change nothing.
 ///
 /// # Safety
 /// `probe_trapezoid_setup` succeeded before.
@@ -281,8 +336,16 @@ pub unsafe extern "C" fn probe_trapezoid_command(command: u32, value: i32) {
         0 => axis.stop(profilegen::StopKind::Smooth),
         1 => axis.stop(profilegen::StopKind::Abrupt),
         2 => axis.set_destination(value),
-        _ => {
+        3 => {
             let _ = TargetVelocity::from_bits(value).and_then(|v| axis.set_max_velocity(v));
+        }
+        4 => {
+            let _ = Acceleration::from_bits(value as u32).and_then(|a| axis.set_acceleration(a));
+        }
+        _ => {
+            if let Ok(d) = Acceleration::from_bits(value as u32) {
+                axis.set_deceleration(d);
+            }
         }
     }
 }

@@ -106,15 +106,19 @@ impl TrapezoidalParameters {
 enum Phase {
     /// Heading for the destination along a plan: stepping replays its runs.
     Run,
-    /// Heading for the destination from a state no plan covers (moving away from it, above the
-    /// maximum velocity, or too fast to stop on it after a change): each cycle decides from
-    /// scratch, then plans again. (A plan that ends in such a state runs as `Decide` from the
-    /// start: its runs lead to [`ELSEWHERE`].)
+    /// Heading for the destination from a state no plan covers: each cycle decides from
+    /// scratch, then plans again. Two kinds are left: with a starting velocity above D, too
+    /// fast to stop on the destination after a change and not covered by the `landing` plan
+    /// (whether it covers a state does not settle along the cycles that slow down, so the end
+    /// of that run is not found ahead); moving away so far that the distance passes 2^31
+    /// counts. (A plan that ends in such a state runs as `Decide` from the start: its runs lead
+    /// to [`ELSEWHERE`].)
     Decide,
     /// Smooth stop: decelerating to rest, destination abandoned.
     Stopping,
-    /// Abrupt stop pending for the next cycle; then heading for the destination if a new maximum
-    /// velocity came in the meantime (`resume`), else `Stopped`.
+    /// Abrupt stop: its cycle is the run in slot `stop_slot`, and after it the axis heads for the
+    /// destination if a new maximum velocity came in the meantime (`resume`), else it is
+    /// stopped ([`Trapezoidal::phase`] reads it so once the cycle is stepped).
     AbruptPending { resume: bool },
     /// Stopped: the velocity register is zero; a new maximum velocity restarts.
     Stopped,
@@ -163,6 +167,38 @@ const RUNS: usize = 16;
 /// common path needs no test of the phase (its count running out is the test).
 const ELSEWHERE: usize = RUNS - 1;
 
+/// The runs of a plan while it is worked out, in order, empty ones left out. At most 13 (an
+/// abrupt stop's cycle, three slowing stages, two turning runs, the six of a plan and rest),
+/// below [`ELSEWHERE`].
+#[derive(Debug, Clone, Copy)]
+struct Layout {
+    runs: [Run; ELSEWHERE],
+    len: usize,
+}
+
+impl Layout {
+    const fn new() -> Self {
+        Self {
+            runs: [Run::NONE; ELSEWHERE],
+            len: 0,
+        }
+    }
+
+    /// Appends `run` unless it is empty.
+    fn push(&mut self, run: Run) {
+        if run.count != 0 {
+            if let Some(slot) = self.runs.get_mut(self.len) {
+                *slot = run;
+                self.len += 1;
+            }
+        }
+    }
+
+    fn runs(&self) -> &[Run] {
+        &self.runs[..self.len]
+    }
+}
+
 /// The trapezoidal point-to-point generator.
 ///
 /// Every cycle takes the largest velocity that (a) speeds up by at most A (or jumps to the
@@ -171,10 +207,11 @@ const ELSEWHERE: usize = RUNS - 1;
 /// [`Trapezoidal::braking_velocity`] for how (c) is exact. So it arrives exactly, with no
 /// precomputed deceleration point, and any parameter can change in motion.
 ///
-/// Those decisions are taken ahead: every command (and the cycle after a stop that resumes)
-/// works out, from the present state, on which cycle (c) will first bind and what the braking
-/// velocities will be, as at most six runs of constant velocity change laid out in a table, and
-/// stepping replays them: one addition and a countdown per cycle, and the cycle that ends a run
+/// Those decisions are taken ahead: every command works out, from the present state, on which
+/// cycle (c) will first bind and what the braking velocities will be, as at most six runs of
+/// constant velocity change laid out in a table (after the cycles that slow down by D from above
+/// a lowered maximum velocity, or from too fast for a nearer destination, and after an abrupt
+/// stop's own cycle, which are runs too), and stepping replays them: one addition and a countdown per cycle, and the cycle that ends a run
 /// moves on to the next in the table (nothing is worked out while stepping). Until the next
 /// command, each cycle's velocity is exactly the one a decision from that cycle's state
 /// would take (tested against the per-cycle decision, `tests/same_states.rs`); any command
@@ -190,7 +227,8 @@ const ELSEWHERE: usize = RUNS - 1;
 /// moves with a starting velocity) no plan can be, as the discrete limits cost up to half a cycle
 /// more, and it is within 2.5 (`tests/trapezoidal.rs`, `fewest_moving_cycles`). A command in
 /// motion plans that way again from the present state when the axis can slow down into it, and
-/// by the per-cycle rule otherwise.
+/// by the per-cycle rule otherwise (then, when the axis is too fast to stop on the destination
+/// within D, cycle by cycle: see `Phase::Decide`).
 ///
 /// ```
 /// use profilegen::format::juno::{Acceleration, TargetVelocity};
@@ -224,6 +262,12 @@ pub struct Trapezoidal {
     /// The state the last abrupt stop produced, until a command: while the generator still
     /// shows it, its last cycle was that stop (for [`ProfileGenerator::limits`]).
     abrupt_state: Option<State>,
+    /// The state a pending abrupt stop's cycle produces, worked out when the stop is given
+    /// (that cycle is a run of the plan, [`Self::lay_out_abrupt`]).
+    abrupt_next: State,
+    /// While an abrupt stop is pending, the slot of its cycle: it is pending until that run has
+    /// been stepped (see [`Self::phase`]).
+    stop_slot: usize,
     /// During a smooth stop, the slot of the rest run that ends it: the stop is over once that
     /// run is under way.
     rest_slot: usize,
@@ -256,6 +300,8 @@ impl Trapezoidal {
             profile,
             destination: i64::from(parameters.destination) << 32,
             abrupt_state: None,
+            abrupt_next: State::at_rest(position),
+            stop_slot: 0,
             rest_slot: 0,
         };
         generator.plan();
@@ -267,7 +313,7 @@ impl Trapezoidal {
     pub fn parameters(&self) -> TrapezoidalParameters {
         let mut parameters = self.parameters;
         if matches!(
-            self.phase,
+            self.phase(),
             Phase::Stopped | Phase::Stopping | Phase::AbruptPending { resume: false }
         ) {
             parameters.max_velocity = TargetVelocity::ZERO;
@@ -284,10 +330,11 @@ impl Trapezoidal {
         self.profile = parameters.profile()?;
         self.parameters = parameters;
         self.destination = i64::from(parameters.destination) << 32;
+        self.settle();
         self.abrupt_state = None;
         // A new velocity restarts a stopped or stopping axis (the abrupt stop still happens).
         match self.phase {
-            Phase::AbruptPending { .. } => self.phase = Phase::AbruptPending { resume: true },
+            Phase::AbruptPending { .. } => self.lay_out_abrupt(true),
             _ => self.plan(),
         }
         Ok(())
@@ -356,12 +403,70 @@ impl Trapezoidal {
     /// After a command: plans again if the axis is heading for the destination; a stopping axis
     /// keeps stopping, at the deceleration now in force; a stopped one stays put.
     fn replan(&mut self) {
+        self.settle();
         self.abrupt_state = None;
         match self.phase {
             Phase::Run | Phase::Decide => self.plan(),
             Phase::Stopping if !self.stop_over() => self.plan_stop(),
+            // The plan after a pending abrupt stop uses what is in force at its cycle.
+            Phase::AbruptPending { resume: true } => self.lay_out_abrupt(true),
             _ => {}
         }
+    }
+
+    /// An abrupt stop from the present state: its cycle (velocity zero, the whole drop) as a
+    /// one-cycle run, then rest, or, with `resume` (a new maximum velocity came after the stop),
+    /// the plan from rest where it stops. The state it produces is worked out now, so its cycle
+    /// is an ordinary step.
+    fn lay_out_abrupt(&mut self, resume: bool) {
+        const STOP: Run = Run {
+            next: 0,
+            increment: 0,
+            count: 1,
+        };
+        self.abrupt_next = self.state.advanced(I32F32::ZERO);
+        if resume {
+            self.plan_after(STOP);
+        } else {
+            self.set_runs(0, &[STOP, Run::REST]);
+        }
+        self.phase = Phase::AbruptPending { resume };
+        self.stop_slot = self.current;
+    }
+
+    /// Whether an abrupt stop's cycle is still to come.
+    fn abrupt_pending(&self) -> bool {
+        matches!(self.phase, Phase::AbruptPending { .. }) && self.current == self.stop_slot
+    }
+
+    /// The phase, with an abrupt stop whose cycle has been stepped read as what follows it:
+    /// stopped, or heading for the destination after a resume (stepping does not update
+    /// `phase`; [`Self::settle`] does at the next command).
+    fn phase(&self) -> Phase {
+        match self.phase {
+            Phase::AbruptPending { resume } if !self.abrupt_pending() => {
+                if resume {
+                    Phase::Run
+                } else {
+                    Phase::Stopped
+                }
+            }
+            phase => phase,
+        }
+    }
+
+    /// The state the last abrupt stop's cycle produced (None after a command).
+    fn last_abrupt(&self) -> Option<State> {
+        match self.phase {
+            Phase::AbruptPending { .. } if !self.abrupt_pending() => Some(self.abrupt_next),
+            _ => self.abrupt_state,
+        }
+    }
+
+    /// Brings `phase` up to date after an abrupt stop's cycle (see [`Self::phase`]).
+    fn settle(&mut self) {
+        self.abrupt_state = self.last_abrupt();
+        self.phase = self.phase();
     }
 
     /// A smooth stop as runs, from the present state: the velocity falls by D every cycle while
@@ -519,14 +624,126 @@ impl Trapezoidal {
     /// then spent), and zero once in segment 0: so the braking cycles are runs too, and the
     /// decision of every cycle is known without a division.
     fn plan(&mut self) {
-        let (distance, sign) = self.ahead();
-        let velocity = (self.state.velocity.to_bits() ^ sign) - sign;
-        if velocity < 0 {
-            if let Some(()) = self.plan_turn(distance, velocity, sign) {
-                return;
-            }
+        self.plan_after(Run::NONE);
+    }
+
+    /// [`Self::plan`] after `opening` (an abrupt stop's cycle, or [`Run::NONE`]): the plan from
+    /// the state that run leaves, laid out behind it.
+    fn plan_after(&mut self, opening: Run) {
+        let mut layout = Layout::new();
+        layout.push(opening);
+        let mut position = self.state.position.to_bits();
+        let mut velocity = self.state.velocity.to_bits();
+        if opening.count != 0 {
+            // The opening keeps its velocity for its cycles (an abrupt stop: one, at zero).
+            velocity = opening.next;
+            position = position.wrapping_add(velocity.wrapping_mul(opening.count as i64));
         }
-        self.plan_from(distance, velocity, sign, [Run::NONE; 2]);
+        if self.plan_into(&mut layout, position, velocity) {
+            self.phase = Phase::Run;
+            self.set_runs(0, layout.runs());
+        } else {
+            self.phase = Phase::Decide;
+            self.set_runs(ELSEWHERE, layout.runs());
+        }
+    }
+
+    /// Appends to `layout` the runs from the state at `position` moving at `velocity` (I32F32
+    /// bits) to the destination; `true` when they end at rest there, `false` when they end in
+    /// a state no plan covers (the next step then goes to [`ELSEWHERE`]).
+    ///
+    /// States whose per-cycle decision is "slow down by D" whatever the distance (above a
+    /// lowered maximum velocity; too fast to stop on the destination after a change) are runs
+    /// too ([`Self::slowing_run`]): the plan follows them to the state where the rule decides
+    /// otherwise (the maximum velocity reached, braking in reach, the destination passed) and
+    /// goes on from there. A few such stages at most: the loop's bound is never reached.
+    fn plan_into(&self, layout: &mut Layout, mut position: i64, mut velocity: i64) -> bool {
+        for _ in 0..8 {
+            let distance = self.destination.wrapping_sub(position);
+            let toward = if distance != 0 { distance } else { velocity };
+            let sign = toward >> 63;
+            let ahead = (velocity ^ sign) - sign;
+            if ahead < 0 {
+                return self.plan_turn(layout, distance, ahead, sign);
+            }
+            let Some((next, increment, count)) = self.slowing_run(distance.unsigned_abs(), ahead)
+            else {
+                return self.plan_from(layout, distance, ahead, sign);
+            };
+            let run = Run {
+                next: (next ^ sign) - sign,
+                increment: (increment ^ sign) - sign,
+                count,
+            };
+            layout.push(run);
+            // The run's cycles cover count·next + increment·count(count − 1)/2 (within the
+            // 64-bit position, which wraps like the register: the runs are at most 2^40 cycles
+            // of velocities below 2^48, and the sum is the distance's, below 2^64 in magnitude).
+            let count_wide = i128::from(count);
+            let covered = count_wide * i128::from(run.next)
+                + i128::from(run.increment) * (count_wide * (count_wide - 1) / 2);
+            position = position.wrapping_add(covered as i64);
+            velocity = run.next + (count as i64 - 1) * run.increment;
+        }
+        false
+    }
+
+    /// The run of cycles that slow down by D from a state the plans do not cover, in the frame
+    /// where the destination lies ahead (`distance` ≥ 0, `velocity` ≥ 0, I32F32 bits), as
+    /// `(first velocity, change per cycle, cycles)`; `None` when the state is one the plans
+    /// cover ([`Self::plan_from`]).
+    ///
+    /// - Above the maximum V: the per-cycle rule takes `max(v − D, V)` when its stopping
+    ///   distance fits and `max(braking velocity, v − D)` when not, so `v − D` while that is
+    ///   ≥ V whatever the distance; the cycle that crosses V decides by the rule (one cycle).
+    /// - At most V, but `T(v − D)` > the distance (a nearer destination or a smaller D): the rule
+    ///   takes `v − D` (the braking velocity is below it), and that leaves the same situation
+    ///   (`T(v − 2D) = T(v − D) − (v − D)`) while the velocity stays above D. With a starting
+    ///   velocity above D the `landing` plan may cover such a state: those are left to the
+    ///   per-cycle rule (`None` here, `Decide` in [`Self::plan_from`]).
+    ///
+    /// Either run also ends after the cycle that passes the destination (the frame turns
+    /// round): distance left `d_j = d − j·v + D·j(j + 1)/2` after `j` cycles, decreasing while
+    /// the velocities are positive, so the last `j` with `d_j ≥ 0` is a bisection.
+    fn slowing_run(&self, distance: u64, velocity: i64) -> Option<(i64, i64, u64)> {
+        let Profile {
+            max_velocity,
+            deceleration,
+            start_velocity,
+            ..
+        } = self.profile;
+        let cycles = if velocity > max_velocity {
+            let cycles = (velocity - max_velocity) as u64 / deceleration as u64;
+            if cycles == 0 {
+                // The cycle that crosses V.
+                let next = self.decide_ahead(i128::from(distance), velocity);
+                return Some((next, 0, 1));
+            }
+            cycles
+        } else {
+            if start_velocity > deceleration
+                || velocity <= deceleration
+                || Self::stopping_distance(velocity - deceleration, deceleration)
+                    <= i128::from(distance)
+            {
+                return None;
+            }
+            // While the velocity before the cycle is above D: v − j·D > D ⇔ j < v / D.
+            (velocity as u64 - 1) / deceleration as u64
+        };
+        let (distance_wide, velocity_wide, deceleration_wide) = (
+            i128::from(distance),
+            i128::from(velocity),
+            i128::from(deceleration),
+        );
+        let left = |j: u64| {
+            let j = i128::from(j);
+            distance_wide - j * velocity_wide + deceleration_wide * (j * (j + 1) / 2)
+        };
+        // The last j ≤ cycles with d_j ≥ 0 (d_0 ≥ 0); the cycle after it, if within the run,
+        // passes the destination and ends the run.
+        let last = last_true(0, cycles + 1, |j| left(j) >= 0);
+        Some((velocity - deceleration, -deceleration, cycles.min(last + 1)))
     }
 
     /// Moving away from the destination: the per-cycle rule slows down by D while the velocity
@@ -535,7 +752,7 @@ impl Trapezoidal {
     /// that state. All of that is worked out here, as two runs before the plan from the state
     /// after them ([`Self::plan_from`]). `None` (decide cycle by cycle) when moving away would
     /// take the distance past 2^31 counts, where the short way round turns the other way.
-    fn plan_turn(&mut self, distance: i64, velocity: i64, sign: i64) -> Option<()> {
+    fn plan_turn(&self, layout: &mut Layout, distance: i64, velocity: i64, sign: i64) -> bool {
         let deceleration = self.profile.deceleration;
         let away = velocity.unsigned_abs() / deceleration as u64;
         let (away_wide, velocity_wide, deceleration_wide) = (
@@ -546,7 +763,9 @@ impl Trapezoidal {
         // The distance once the away cycles are over: they cover k·v + D·k(k + 1)/2 ≤ 0.
         let moved =
             away_wide * velocity_wide + deceleration_wide * (away_wide * (away_wide + 1) / 2);
-        let far = i64::try_from(i128::from(distance.unsigned_abs()) - moved).ok()?;
+        let Ok(far) = i64::try_from(i128::from(distance.unsigned_abs()) - moved) else {
+            return false;
+        };
         let last = velocity + away as i64 * deceleration;
         let turn = |v: i64| (v ^ sign) - sign;
         let away_run = Run {
@@ -554,10 +773,10 @@ impl Trapezoidal {
             increment: turn(deceleration),
             count: away,
         };
+        layout.push(away_run);
         if last == 0 {
             // At rest after the away cycles: a plan from rest (with the starting velocity).
-            self.plan_from(far, 0, sign, [away_run, Run::NONE]);
-            return Some(());
+            return self.plan_from(layout, far, 0, sign);
         }
         let turning = self.decide_ahead(i128::from(far), last);
         let turn_run = Run {
@@ -565,14 +784,14 @@ impl Trapezoidal {
             increment: 0,
             count: 1,
         };
-        self.plan_from(far - turning, turning, sign, [away_run, turn_run]);
-        Some(())
+        layout.push(turn_run);
+        self.plan_from(layout, far - turning, turning, sign)
     }
 
-    /// [`Self::plan`] from a state `prefix` leads to: `distance` ahead (≥ 0, I32F32 bits) and
-    /// `velocity` in that frame, `sign` the frame's direction mask; the prefix's runs go first.
-    fn plan_from(&mut self, distance: i64, velocity: i64, sign: i64, prefix: [Run; 2]) {
-        let [before, turning] = prefix;
+    /// [`Self::plan_into`] from a state `distance` ahead (≥ 0, I32F32 bits) moving at
+    /// `velocity` in that frame, `sign` the frame's direction mask: appends the runs, `true`
+    /// when they end at rest on the destination.
+    fn plan_from(&self, layout: &mut Layout, distance: i64, velocity: i64, sign: i64) -> bool {
         let Profile {
             max_velocity,
             acceleration,
@@ -580,14 +799,11 @@ impl Trapezoidal {
             start_velocity,
         } = self.profile;
         if distance == 0 && velocity == 0 {
-            self.phase = Phase::Run;
-            self.set_runs(0, &[before, turning, Run::REST]);
-            return;
+            layout.push(Run::REST);
+            return true;
         }
         if !(0..=max_velocity).contains(&velocity) {
-            self.phase = Phase::Decide;
-            self.set_runs(ELSEWHERE, &[before, turning]);
-            return;
+            return false;
         }
         // |distance| ≤ 2^63; in i128 throughout the search.
         let distance = i128::from(distance.unsigned_abs());
@@ -600,19 +816,13 @@ impl Trapezoidal {
         if start_velocity > deceleration && distance > 0 {
             // The drop from the starting velocity is more than D: the landing is planned with
             // the move (`landing`), unless the axis is too fast for that plan's first cycle.
-            if let Some(runs) = landing::plan(
-                distance,
-                velocity,
-                max_velocity,
-                acceleration,
-                deceleration,
-                start_velocity,
-            ) {
+            if let Some(runs) = self.landing(distance, velocity) {
                 let [a, b, c, d, e] =
                     runs.map(|(next, increment, count)| ahead(next, increment, count));
-                self.phase = Phase::Run;
-                self.set_runs(0, &[before, turning, a, b, c, d, e, Run::REST]);
-                return;
+                for run in [a, b, c, d, e, Run::REST] {
+                    layout.push(run);
+                }
+                return true;
             }
         }
         let base = if velocity == 0 {
@@ -670,10 +880,11 @@ impl Trapezoidal {
         let cruise = ahead(max_velocity, 0, cycles - cycles.min(rising));
         if braking < last - deceleration {
             // Too fast to stop on the destination within D after these runs (a change made it
-            // so): then decide cycle by cycle. The runs go last before `ELSEWHERE`.
-            self.phase = Phase::Decide;
-            self.set_runs(ELSEWHERE, &[before, turning, accelerate, cruise]);
-            return;
+            // so, with a starting velocity above D: `slowing_run` lays out the other cases):
+            // then decide cycle by cycle. The runs go last before `ELSEWHERE`.
+            layout.push(accelerate);
+            layout.push(cruise);
+            return false;
         }
         // < q + 1 ≤ 2^40 (the braking velocity is the largest that fits).
         let leftover = (left - Self::stopping_distance(braking, deceleration)) as u64;
@@ -695,12 +906,29 @@ impl Trapezoidal {
             let segment = leftover - 1 + u64::from(offset + 1 == deceleration as u64);
             ahead(last - deceleration + 1, -deceleration, 1 + segment)
         };
-        self.phase = Phase::Run;
         // The cycle that arrives (velocity zero) is the rest run's first.
-        self.set_runs(
-            0,
-            &[before, turning, accelerate, cruise, brake, bump, Run::REST],
-        );
+        for run in [accelerate, cruise, brake, bump, Run::REST] {
+            layout.push(run);
+        }
+        true
+    }
+
+    /// [`landing::plan`] with the profile in force.
+    fn landing(&self, distance: i128, velocity: i64) -> Option<[landing::Run; 5]> {
+        let Profile {
+            max_velocity,
+            acceleration,
+            deceleration,
+            start_velocity,
+        } = self.profile;
+        landing::plan(
+            distance,
+            velocity,
+            max_velocity,
+            acceleration,
+            deceleration,
+            start_velocity,
+        )
     }
 
     /// Lays out the runs of a plan that are not empty, from slot `at` when it is 0, or so that
@@ -708,8 +936,11 @@ impl Trapezoidal {
     /// the first the current run.
     fn set_runs(&mut self, at: usize, runs: &[Run]) {
         let mut slot = 0;
-        for run in runs.iter().filter(|run| run.count != 0) {
-            self.runs[slot] = *run;
+        for (to, run) in self.runs[..ELSEWHERE]
+            .iter_mut()
+            .zip(runs.iter().filter(|run| run.count != 0))
+        {
+            *to = *run;
             slot += 1;
         }
         let first = at.saturating_sub(slot);
@@ -730,6 +961,7 @@ impl Trapezoidal {
     #[cold]
     #[inline(never)]
     fn step_otherwise(&mut self) -> State {
+        self.settle();
         let velocity = self.state.velocity.to_bits();
         let next = match self.phase {
             // A plan's runs never lead here; if one did, deciding from scratch takes the same
@@ -742,19 +974,8 @@ impl Trapezoidal {
                 self.plan();
                 return self.state;
             }
-            Phase::AbruptPending { resume } => {
-                self.phase = Phase::Stopped;
-                let state = self.state.advanced(I32F32::ZERO);
-                self.state = state;
-                self.abrupt_state = Some(state);
-                if resume {
-                    self.plan();
-                } else {
-                    self.stopped();
-                }
-                return state;
-            }
-            Phase::Stopped => {
+            // A pending abrupt stop's cycle is a run (its slot is never ELSEWHERE).
+            Phase::Stopped | Phase::AbruptPending { .. } => {
                 self.stopped();
                 0
             }
@@ -811,7 +1032,7 @@ impl ProfileGenerator for Trapezoidal {
 
     fn is_complete(&self) -> bool {
         self.state.velocity == I32F32::ZERO
-            && match self.phase {
+            && match self.phase() {
                 Phase::Run | Phase::Decide => self.destination == self.state.position.to_bits(),
                 Phase::Stopped => true,
                 Phase::Stopping => self.current == self.rest_slot,
@@ -820,16 +1041,15 @@ impl ProfileGenerator for Trapezoidal {
     }
 
     fn stop(&mut self, kind: StopKind) {
-        self.phase = match (kind, self.phase) {
+        self.settle();
+        match (kind, self.phase) {
             (StopKind::Smooth, Phase::AbruptPending { .. }) | (StopKind::Abrupt, _) => {
-                Phase::AbruptPending { resume: false }
+                self.lay_out_abrupt(false);
             }
-            (StopKind::Smooth, _) => Phase::Stopping,
-        };
-        if self.phase == Phase::Stopping {
-            self.plan_stop();
-        } else {
-            self.elsewhere();
+            (StopKind::Smooth, _) => {
+                self.phase = Phase::Stopping;
+                self.plan_stop();
+            }
         }
     }
 
@@ -844,7 +1064,7 @@ impl ProfileGenerator for Trapezoidal {
             self.profile.acceleration
         };
         // The cycle that arrives may drop to rest from up to the starting velocity (SPEC §7).
-        let arrived = self.phase == Phase::Run
+        let arrived = self.phase() == Phase::Run
             && self.state.velocity == I32F32::ZERO
             && self.destination == self.state.position.to_bits();
         let slow_down = if arrived {
@@ -861,7 +1081,7 @@ impl ProfileGenerator for Trapezoidal {
             max_slow_down: Some(I32F32::from_bits(slow_down)),
             max_acceleration: None,
             max_jerk: None,
-            exempt: self.abrupt_state == Some(self.state),
+            exempt: self.last_abrupt() == Some(self.state),
         }
     }
 }

@@ -1,0 +1,763 @@
+//! `Trapezoidal` as it was at commit 938eb76 (issue #12's first part): the plan laid out at each
+//! command, but the states no plan covered (above a lowered maximum velocity, too fast to stop on
+//! a nearer destination) decided cycle by cycle, and the abrupt stop's cycle taken apart from the
+//! runs. Kept, arithmetic unchanged (validation and `limits` left out), as the yardstick of
+//! `tests/same_states.rs` for every starting velocity.
+#![allow(dead_code, clippy::all)]
+
+mod bisect;
+mod landing;
+
+use fixed::types::I32F32;
+
+use bisect::last_true;
+use profilegen::format::juno::{Acceleration, TargetVelocity};
+use profilegen::{Error, State, StopKind, TrapezoidalParameters};
+
+fn advance(state: &mut State, velocity: I32F32) -> State {
+    *state = state.advanced(velocity);
+    *state
+}
+
+/// The limits, validated, as I32F32 bits (a separate value from the per-cycle state).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Profile {
+    max_velocity: i64,
+    acceleration: i64,
+    /// Resolved: a zero register means the acceleration.
+    deceleration: i64,
+    start_velocity: i64,
+}
+
+/// The limits as I32F32 bits (the parameters are valid: the caller's generator checked them).
+fn profile(parameters: &TrapezoidalParameters) -> Profile {
+    let acceleration = i64::from(parameters.acceleration.to_bits()) << 8;
+    let deceleration = match parameters.deceleration.to_bits() {
+        0 => acceleration,
+        bits => i64::from(bits) << 8,
+    };
+    Profile {
+        max_velocity: i64::from(parameters.max_velocity.to_bits()) << 16,
+        acceleration,
+        deceleration,
+        start_velocity: i64::from(parameters.start_velocity.to_bits()) << 16,
+    }
+}
+
+/// What the next cycle does.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Phase {
+    /// Heading for the destination along a plan: stepping replays its runs.
+    Run,
+    /// Heading for the destination from a state no plan covers (moving away from it, above the
+    /// maximum velocity, or too fast to stop on it after a change): each cycle decides from
+    /// scratch, then plans again. (A plan that ends in such a state runs as `Decide` from the
+    /// start: its runs lead to [`ELSEWHERE`].)
+    Decide,
+    /// Smooth stop: decelerating to rest, destination abandoned.
+    Stopping,
+    /// Abrupt stop pending for the next cycle; then heading for the destination if a new maximum
+    /// velocity came in the meantime (`resume`), else `Stopped`.
+    AbruptPending { resume: bool },
+    /// Stopped: the velocity register is zero; a new maximum velocity restarts.
+    Stopped,
+}
+
+/// One run of the plan: `count` cycles whose velocities (on the axis, signed) are `next`,
+/// `next + increment`, … (a velocity change that is constant over the run).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Run {
+    /// The velocity of the run's next cycle, I32F32 bits.
+    next: i64,
+    /// Its change per cycle.
+    increment: i64,
+    /// Cycles left in the run (≥ 1 while it is the current run).
+    count: u64,
+}
+
+impl Run {
+    /// An empty run, left out of a plan.
+    const NONE: Self = Self {
+        next: 0,
+        increment: 0,
+        count: 0,
+    };
+    /// At rest: velocity zero for 2^64 − 1 cycles (for ever, in practice), so resting cycles
+    /// take the common path too. A plan's arriving cycle is its first.
+    const REST: Self = Self {
+        next: 0,
+        increment: 0,
+        count: u64::MAX,
+    };
+    /// The one-cycle run in slot [`ELSEWHERE`]: its cycle is [`PlannedTrapezoidal::step_otherwise`]'s.
+    const ELSEWHERE: Self = Self {
+        next: 0,
+        increment: 0,
+        count: 1,
+    };
+}
+
+/// The slots of [`PlannedTrapezoidal::runs`]: a plan has at most eight runs (moving away from the
+/// destination and the cycle that turns, then accelerate, cruise, brake, bump, rest; or the five
+/// of a `landing` plan and rest), and slot [`ELSEWHERE`] stands for the phases that are not a
+/// plan. A power of two, so that `% RUNS` is a mask.
+const RUNS: usize = 16;
+/// The slot that sends the next step to [`PlannedTrapezoidal::step_otherwise`]: a one-cycle run, so the
+/// common path needs no test of the phase (its count running out is the test).
+const ELSEWHERE: usize = RUNS - 1;
+
+/// The trapezoidal point-to-point generator.
+///
+/// Every cycle takes the largest velocity that (a) speeds up by at most A (or jumps to the
+/// starting velocity from rest), (b) stays within the maximum velocity, and (c) still lets the
+/// axis stop exactly on the destination decelerating by at most D per cycle — see
+/// [`PlannedTrapezoidal::braking_velocity`] for how (c) is exact. So it arrives exactly, with no
+/// precomputed deceleration point, and any parameter can change in motion.
+///
+/// Those decisions are taken ahead: every command (and the cycle after a stop that resumes)
+/// works out, from the present state, on which cycle (c) will first bind and what the braking
+/// velocities will be, as at most six runs of constant velocity change laid out in a table, and
+/// stepping replays them: one addition and a countdown per cycle, and the cycle that ends a run
+/// moves on to the next in the table (nothing is worked out while stepping). Until the next
+/// command, each cycle's velocity is exactly the one a decision from that cycle's state
+/// would take (tested against the per-cycle decision, `tests/same_states.rs`); any command
+/// drops the plan and works it out again.
+///
+/// The last moving cycle may drop to rest from up to the starting velocity S (SPEC §7), as the
+/// first may jump from rest to it. While S ≤ D that drop is an ordinary deceleration and the rule
+/// above is the whole story. With S > D the largest velocity each cycle can leave a distance that
+/// no landing covers, so the move is planned whole instead (the `landing` module): the fewest
+/// cycles the limits allow, at the highest velocities that cover the distance exactly. That plan
+/// is at most 2 cycles over the continuous-time optimum with both jumps
+/// ([`crate::reference::trapezoidal_duration`]) on most moves; on the rest (about 2 % of random
+/// moves with a starting velocity) no plan can be, as the discrete limits cost up to half a cycle
+/// more, and it is within 2.5 (`tests/trapezoidal.rs`, `fewest_moving_cycles`). A command in
+/// motion plans that way again from the present state when the axis can slow down into it, and
+/// by the per-cycle rule otherwise.
+///
+#[derive(Debug, Clone)]
+pub struct PlannedTrapezoidal {
+    // The per-cycle fields first.
+    /// The run under way: an index into `runs` (always below [`RUNS`]).
+    current: usize,
+    /// The plan's runs in order, worked out when the plan is made, so the cycle that ends one
+    /// run only moves on to the next (the last run, at rest, never ends), and [`ELSEWHERE`].
+    runs: [Run; RUNS],
+    state: State,
+    phase: Phase,
+    parameters: TrapezoidalParameters,
+    profile: Profile,
+    /// The destination as I32F32 bits.
+    destination: i64,
+    /// The state the last abrupt stop produced, until a command: while the generator still
+    /// shows it, its last cycle was that stop (for [`ProfileGenerator::limits`]).
+    abrupt_state: Option<State>,
+    /// During a smooth stop, the slot of the rest run that ends it: the stop is over once that
+    /// run is under way.
+    rest_slot: usize,
+}
+
+impl PlannedTrapezoidal {
+    /// A generator at rest at position 0 that starts the move on its first step.
+    ///
+    /// # Errors
+    /// As [`TrapezoidalParameters::validate`].
+    pub fn new(parameters: TrapezoidalParameters) -> Result<Self, Error> {
+        Self::with_position(parameters, I32F32::ZERO)
+    }
+
+    /// As [`Self::new`], starting at rest at `position`.
+    ///
+    /// # Errors
+    /// As [`TrapezoidalParameters::validate`].
+    pub fn with_position(
+        parameters: TrapezoidalParameters,
+        position: I32F32,
+    ) -> Result<Self, Error> {
+        let profile = profile(&parameters);
+        let mut generator = Self {
+            current: 0,
+            runs: [Run::NONE; RUNS],
+            state: State::at_rest(position),
+            phase: Phase::Run,
+            parameters,
+            profile,
+            destination: i64::from(parameters.destination) << 32,
+            abrupt_state: None,
+            rest_slot: 0,
+        };
+        generator.plan();
+        Ok(generator)
+    }
+
+    /// The parameters in force (after a stop the maximum velocity reads zero, as the chip's
+    /// register does).
+    pub fn parameters(&self) -> TrapezoidalParameters {
+        let mut parameters = self.parameters;
+        if matches!(
+            self.phase,
+            Phase::Stopped | Phase::Stopping | Phase::AbruptPending { resume: false }
+        ) {
+            parameters.max_velocity = TargetVelocity::ZERO;
+        }
+        parameters
+    }
+
+    /// Replaces all parameters at once, in motion or at rest; they apply from the next cycle.
+    /// During or after a stop this restarts motion (after the abrupt stop's cycle, for that kind).
+    ///
+    /// # Errors
+    /// As [`TrapezoidalParameters::validate`]; on error nothing changes.
+    pub fn set_parameters(&mut self, parameters: TrapezoidalParameters) -> Result<(), Error> {
+        self.profile = profile(&parameters);
+        self.parameters = parameters;
+        self.destination = i64::from(parameters.destination) << 32;
+        self.abrupt_state = None;
+        // A new velocity restarts a stopped or stopping axis (the abrupt stop still happens).
+        match self.phase {
+            Phase::AbruptPending { .. } => self.phase = Phase::AbruptPending { resume: true },
+            _ => self.plan(),
+        }
+        Ok(())
+    }
+
+    /// Sets a new destination; applies from the next cycle (a destination behind the axis means
+    /// decelerate, reverse and arrive). After a stop, motion restarts only with a new maximum
+    /// velocity.
+    pub fn set_destination(&mut self, destination: i32) {
+        self.parameters.destination = destination;
+        self.destination = i64::from(destination) << 32;
+        self.replan();
+    }
+
+    /// Sets a new maximum velocity; applies from the next cycle (a lower one means decelerate at
+    /// D down to it). After a stop this restarts motion.
+    ///
+    /// # Errors
+    /// As [`TrapezoidalParameters::validate`]; on error nothing changes.
+    pub fn set_max_velocity(&mut self, max_velocity: TargetVelocity) -> Result<(), Error> {
+        self.set_parameters(TrapezoidalParameters {
+            max_velocity,
+            ..self.parameters
+        })
+    }
+
+    /// Sets a new acceleration; applies from the next cycle.
+    ///
+    /// # Errors
+    /// [`Error::Zero`] if it is zero; on error nothing changes.
+    pub fn set_acceleration(&mut self, acceleration: Acceleration) -> Result<(), Error> {
+        self.change(TrapezoidalParameters {
+            acceleration,
+            ..self.parameters
+        })
+    }
+
+    /// Sets a new deceleration (zero: use the acceleration); applies from the next cycle.
+    pub fn set_deceleration(&mut self, deceleration: Acceleration) {
+        // Only the deceleration changes, and any deceleration register is valid.
+        let _ = self.change(TrapezoidalParameters {
+            deceleration,
+            ..self.parameters
+        });
+    }
+
+    /// Sets a new starting velocity; applies to the next cycle that starts from rest.
+    ///
+    /// # Errors
+    /// [`Error::OutOfRange`] unless 0 ≤ it ≤ the maximum velocity; on error nothing changes.
+    pub fn set_start_velocity(&mut self, start_velocity: TargetVelocity) -> Result<(), Error> {
+        self.change(TrapezoidalParameters {
+            start_velocity,
+            ..self.parameters
+        })
+    }
+
+    /// A change that, unlike a new maximum velocity, does not restart a stopped axis.
+    fn change(&mut self, parameters: TrapezoidalParameters) -> Result<(), Error> {
+        self.profile = profile(&parameters);
+        self.parameters = parameters;
+        self.replan();
+        Ok(())
+    }
+
+    /// After a command: plans again if the axis is heading for the destination; a stopping axis
+    /// keeps stopping, at the deceleration now in force; a stopped one stays put.
+    fn replan(&mut self) {
+        self.abrupt_state = None;
+        match self.phase {
+            Phase::Run | Phase::Decide => self.plan(),
+            Phase::Stopping if !self.stop_over() => self.plan_stop(),
+            _ => {}
+        }
+    }
+
+    /// A smooth stop as runs, from the present state: the velocity falls by D every cycle while
+    /// it stays on its side of zero (⌈|v| / D⌉ − 1 cycles, a division once), then one cycle at
+    /// zero (the stop's last, before which the axis is not at rest yet), then rest: the
+    /// deceleration of SPEC §9 without a decision per cycle.
+    fn plan_stop(&mut self) {
+        let velocity = self.state.velocity.to_bits();
+        let deceleration = self.profile.deceleration;
+        // 0 when moving forwards (or at rest), −1 backwards: the run turned round by mask.
+        let sign = velocity >> 63;
+        let magnitude = velocity.unsigned_abs();
+        let slowing = magnitude.saturating_sub(1) / deceleration as u64;
+        let turn = |v: i64| (v ^ sign) - sign;
+        let runs = [
+            Run {
+                next: turn(magnitude as i64 - deceleration),
+                increment: turn(-deceleration),
+                count: slowing,
+            },
+            Run {
+                next: 0,
+                increment: 0,
+                count: 1,
+            },
+            Run::REST,
+        ];
+        self.set_runs(0, &runs);
+        self.rest_slot = usize::from(slowing != 0) + 1;
+    }
+
+    /// Whether a smooth stop has come to rest (its rest run under way).
+    fn stop_over(&self) -> bool {
+        self.state.velocity == I32F32::ZERO && self.current == self.rest_slot
+    }
+
+    /// The distance (I32F32 bits) travelled from a cycle at `velocity` ≥ 0 (that cycle
+    /// included) until rest, slowing down by the full deceleration D every cycle:
+    /// `T(v) = v + (v − D) + (v − 2D) + … ` over the positive terms, then 0 (the last positive
+    /// term is ≤ D, so that drop is allowed). With `q = ⌊v / D⌋`:
+    /// `T(v) = (q + 1)·v − D·q(q + 1)/2`. Exact: v < 2^48 and D ≥ 2^8, so q < 2^40 and the
+    /// products stay below 2^89.
+    fn stopping_distance(velocity: i64, deceleration: i64) -> i128 {
+        // Floor division of non-negative values below 2^48: u64 is enough.
+        let q = (velocity as u64 / deceleration as u64) as i128;
+        let (velocity, deceleration) = (i128::from(velocity), i128::from(deceleration));
+        (q + 1) * velocity - deceleration * (q * (q + 1) / 2)
+    }
+
+    /// The largest velocity `v` (I32F32 bits) with `T(v) ≤ distance`: the fastest this cycle may
+    /// go and still stop exactly on the destination, decelerating by at most D per cycle.
+    ///
+    /// `T` is increasing and piecewise linear: on `q·D ≤ v < (q + 1)·D` it is
+    /// `(q + 1)·v − D·q(q + 1)/2`, and `T(q·D) = D·q(q + 1)/2`. So find the segment, the largest
+    /// `q` with `D·q(q + 1)/2 ≤ distance` (`q(q + 1) ≤ m = ⌊2·distance / D⌋` ⇔
+    /// `2q + 1 ≤ ⌊√(4m + 1)⌋`, an exact integer square root), then solve the segment's line and
+    /// round down: `v = ⌊(distance + D·q(q + 1)/2) / (q + 1)⌋`. Any distance left over,
+    /// `distance − T(v) < q + 1` units of 2^-32 counts, is absorbed on later cycles, because the
+    /// velocity can take any 2^-32 value: the axis lands exactly.
+    pub fn braking_velocity(distance: i128, deceleration: i64) -> i64 {
+        if distance <= 0 {
+            return 0;
+        }
+        // Distances up to 2^62 (2^30 counts) take 64-bit divisions, several times cheaper than
+        // 128-bit ones: 2·distance < 2^63, and the numerator below is < 2·distance + D·(q+1)
+        // < 2^64. Longer distances take the same arithmetic in 128 bits.
+        if let (Ok(distance), Ok(deceleration)) =
+            (u64::try_from(distance), u64::try_from(deceleration))
+        {
+            if distance < 1 << 62 {
+                let m = 2 * distance / deceleration;
+                let q = ((4 * m + 1).isqrt() - 1) / 2;
+                // D·q(q+1)/2 ≤ distance (that is how q was chosen), so no overflow.
+                let numerator = distance + deceleration * (q * (q + 1) / 2);
+                return (numerator / (q + 1)) as i64;
+            }
+        }
+        let deceleration = i128::from(deceleration);
+        // distance < 2^64 and D ≥ 2^8, so m < 2^57 and 4m + 1 < 2^59: u64 throughout.
+        let m = (2 * distance / deceleration) as u64;
+        let q = i128::from(((4 * m + 1).isqrt() - 1) / 2);
+        let numerator = distance + deceleration * q * (q + 1) / 2;
+        (numerator / (q + 1)) as i64
+    }
+
+    /// The per-cycle decision from scratch, in the frame where the destination lies ahead
+    /// (`distance ≥ 0`): the velocity rule of the type's documentation, for any state.
+    fn decide_ahead(&self, distance: i128, velocity: i64) -> i64 {
+        let Profile {
+            max_velocity,
+            acceleration,
+            deceleration,
+            start_velocity,
+        } = self.profile;
+        // From rest the first cycle may jump to the starting velocity and accelerate from there:
+        // "accelerating at the commanded acceleration, beginning at the starting velocity".
+        let speed_up = if velocity == 0 {
+            acceleration + start_velocity
+        } else {
+            acceleration
+        };
+        if velocity < 0 {
+            // Moving away from the destination: slow down by D; the cycle that crosses zero
+            // changes the velocity by at most D in all and speeds up by at most A.
+            let slowed = velocity + deceleration;
+            if slowed <= 0 {
+                return slowed;
+            }
+            let braking = Self::braking_velocity(distance, deceleration);
+            return slowed.min(acceleration).min(max_velocity).min(braking);
+        }
+        let upper = if velocity > max_velocity {
+            // A lower maximum velocity: decelerate at D down to it.
+            (velocity - deceleration).max(max_velocity)
+        } else {
+            (velocity + speed_up).min(max_velocity)
+        };
+        if Self::stopping_distance(upper, deceleration) <= distance {
+            return upper;
+        }
+        // Braking is due. From any state reached under constant parameters the braking velocity
+        // is at least velocity − D (the previous cycle checked T(velocity) ≤ distance before it);
+        // after a change of destination or D it may not be, and then the axis slows by D and
+        // overshoots as little as it can.
+        Self::braking_velocity(distance, deceleration).max(velocity - deceleration)
+    }
+
+    /// The signed distance to go and the direction mask of the frame where it lies ahead
+    /// (the destination's side, or the velocity's when on it).
+    fn ahead(&self) -> (i64, i64) {
+        // Modulo the 32-bit position register: the move goes the short way round, as on the
+        // chip (exact for every |distance| < 2^31 counts).
+        let distance = self.destination.wrapping_sub(self.state.position.to_bits());
+        let toward = if distance != 0 {
+            distance
+        } else {
+            self.state.velocity.to_bits()
+        };
+        (distance, toward >> 63)
+    }
+
+    /// Works out, from the present state and parameters, the cycles to the destination: the
+    /// decisions of [`Self::decide_ahead`] for every cycle until the next command, taken at once.
+    ///
+    /// In the frame where the destination lies ahead, with `d` the distance and `v` the velocity
+    /// (0 ≤ v ≤ the maximum V): cycle `i` would go at `u_i = min(w + i·A, V)` (`w` = v, or the
+    /// starting velocity from rest), and it may as long as `T(u_i)` fits in what is left,
+    /// `d − (u_1 + … + u_{i−1})`. Both sides are monotone in `i` (the velocities rise, the
+    /// distance left falls), so the first cycle that must brake is found by bisection over the
+    /// accelerating cycles, or by one division over the cruising ones. From there the braking
+    /// velocity `b` = [`Self::braking_velocity`] of the distance left, which leaves
+    /// `L = distance − T(b) ≤ q = ⌊b / D⌋` over. Each later cycle's distance left is
+    /// `T(b − k·D) + L` (`T(x) = x + T(x − D)`), whose braking velocity is `b − k·D` while
+    /// `L` is less than the segment's slope, one unit more on the cycle it equals it (`L` is
+    /// then spent), and zero once in segment 0: so the braking cycles are runs too, and the
+    /// decision of every cycle is known without a division.
+    fn plan(&mut self) {
+        let (distance, sign) = self.ahead();
+        let velocity = (self.state.velocity.to_bits() ^ sign) - sign;
+        if velocity < 0 {
+            if let Some(()) = self.plan_turn(distance, velocity, sign) {
+                return;
+            }
+        }
+        self.plan_from(distance, velocity, sign, [Run::NONE; 2]);
+    }
+
+    /// Moving away from the destination: the per-cycle rule slows down by D while the velocity
+    /// stays on the far side of zero (or reaches it), ⌊|v| / D⌋ cycles, then turns with one cycle
+    /// at `min(v + D, A, V, braking velocity)` ([`Self::decide_ahead`]), then goes on as from
+    /// that state. All of that is worked out here, as two runs before the plan from the state
+    /// after them ([`Self::plan_from`]). `None` (decide cycle by cycle) when moving away would
+    /// take the distance past 2^31 counts, where the short way round turns the other way.
+    fn plan_turn(&mut self, distance: i64, velocity: i64, sign: i64) -> Option<()> {
+        let deceleration = self.profile.deceleration;
+        let away = velocity.unsigned_abs() / deceleration as u64;
+        let (away_wide, velocity_wide, deceleration_wide) = (
+            i128::from(away),
+            i128::from(velocity),
+            i128::from(deceleration),
+        );
+        // The distance once the away cycles are over: they cover k·v + D·k(k + 1)/2 ≤ 0.
+        let moved =
+            away_wide * velocity_wide + deceleration_wide * (away_wide * (away_wide + 1) / 2);
+        let far = i64::try_from(i128::from(distance.unsigned_abs()) - moved).ok()?;
+        let last = velocity + away as i64 * deceleration;
+        let turn = |v: i64| (v ^ sign) - sign;
+        let away_run = Run {
+            next: turn(velocity + deceleration),
+            increment: turn(deceleration),
+            count: away,
+        };
+        if last == 0 {
+            // At rest after the away cycles: a plan from rest (with the starting velocity).
+            self.plan_from(far, 0, sign, [away_run, Run::NONE]);
+            return Some(());
+        }
+        let turning = self.decide_ahead(i128::from(far), last);
+        let turn_run = Run {
+            next: turn(turning),
+            increment: 0,
+            count: 1,
+        };
+        self.plan_from(far - turning, turning, sign, [away_run, turn_run]);
+        Some(())
+    }
+
+    /// [`Self::plan`] from a state `prefix` leads to: `distance` ahead (≥ 0, I32F32 bits) and
+    /// `velocity` in that frame, `sign` the frame's direction mask; the prefix's runs go first.
+    fn plan_from(&mut self, distance: i64, velocity: i64, sign: i64, prefix: [Run; 2]) {
+        let [before, turning] = prefix;
+        let Profile {
+            max_velocity,
+            acceleration,
+            deceleration,
+            start_velocity,
+        } = self.profile;
+        if distance == 0 && velocity == 0 {
+            self.phase = Phase::Run;
+            self.set_runs(0, &[before, turning, Run::REST]);
+            return;
+        }
+        if !(0..=max_velocity).contains(&velocity) {
+            self.phase = Phase::Decide;
+            self.set_runs(ELSEWHERE, &[before, turning]);
+            return;
+        }
+        // |distance| ≤ 2^63; in i128 throughout the search.
+        let distance = i128::from(distance.unsigned_abs());
+        // Turns a run of the frame where the destination lies ahead round to the axis.
+        let ahead = |next: i64, increment: i64, count: u64| Run {
+            next: (next ^ sign) - sign,
+            increment: (increment ^ sign) - sign,
+            count,
+        };
+        if start_velocity > deceleration && distance > 0 {
+            // The drop from the starting velocity is more than D: the landing is planned with
+            // the move (`landing`), unless the axis is too fast for that plan's first cycle.
+            if let Some(runs) = landing::plan(
+                distance,
+                velocity,
+                max_velocity,
+                acceleration,
+                deceleration,
+                start_velocity,
+            ) {
+                let [a, b, c, d, e] =
+                    runs.map(|(next, increment, count)| ahead(next, increment, count));
+                self.phase = Phase::Run;
+                self.set_runs(0, &[before, turning, a, b, c, d, e, Run::REST]);
+                return;
+            }
+        }
+        let base = if velocity == 0 {
+            start_velocity
+        } else {
+            velocity
+        };
+        // Cycles that accelerate without reaching V: base + i·A < V ⇔ i ≤ (V − base − 1) / A.
+        // `base` ≤ V (the starting velocity is at most V), so the numerator is ≥ −1.
+        let rising = u64::try_from((max_velocity - base - 1) / acceleration).unwrap_or(0);
+        let (base_wide, acceleration_wide, max_wide) = (
+            i128::from(base),
+            i128::from(acceleration),
+            i128::from(max_velocity),
+        );
+        // u_i and u_1 + … + u_k (k < 2^56 and every velocity < 2^48: below 2^104).
+        let velocity_of = |i: u64| -> i64 {
+            if i <= rising {
+                base + i as i64 * acceleration
+            } else {
+                max_velocity
+            }
+        };
+        let covered = |k: u64| -> i128 {
+            let rising_part = i128::from(k.min(rising));
+            rising_part * base_wide
+                + acceleration_wide * (rising_part * (rising_part + 1) / 2)
+                + i128::from(k - k.min(rising)) * max_wide
+        };
+        let may = |i: u64| -> bool {
+            Self::stopping_distance(velocity_of(i), deceleration) <= distance - covered(i - 1)
+        };
+        // m: the number of cycles before the first that brakes.
+        let cycles = if rising == 0 || may(rising) {
+            // Past the rising cycles, every cycle goes at V while T(V) fits.
+            let room =
+                distance - covered(rising) - Self::stopping_distance(max_velocity, deceleration);
+            if room < 0 {
+                rising
+            } else {
+                rising + 1 + (room / max_wide) as u64
+            }
+        } else {
+            // may(0) holds by convention, may(rising) does not: bisect.
+            last_true(0u64, rising, may)
+        };
+        let last = if cycles == 0 {
+            velocity
+        } else {
+            velocity_of(cycles)
+        };
+        let left = distance - covered(cycles);
+        let braking = Self::braking_velocity(left, deceleration);
+        let accelerate = ahead(base + acceleration, acceleration, cycles.min(rising));
+        let cruise = ahead(max_velocity, 0, cycles - cycles.min(rising));
+        if braking < last - deceleration {
+            // Too fast to stop on the destination within D after these runs (a change made it
+            // so): then decide cycle by cycle. The runs go last before `ELSEWHERE`.
+            self.phase = Phase::Decide;
+            self.set_runs(ELSEWHERE, &[before, turning, accelerate, cruise]);
+            return;
+        }
+        // < q + 1 ≤ 2^40 (the braking velocity is the largest that fits).
+        let leftover = (left - Self::stopping_distance(braking, deceleration)) as u64;
+        let segment = braking as u64 / deceleration as u64;
+        // The first braking velocity, then D less for as long as the leftover is below the
+        // segment's slope: segment − leftover cycles.
+        let count = 1 + (segment - leftover);
+        let brake = ahead(braking, -deceleration, count);
+        let bump = if leftover == 0 {
+            Run::NONE
+        } else {
+            // The brake run's last velocity lies in segment `leftover` (its segment fell by one
+            // every cycle), whose slope from the next velocity down is `leftover`. The leftover
+            // buys exactly one unit: the next velocity is one unit above last − D, in segment
+            // leftover − 1, or in segment leftover if that unit reaches the segment's start
+            // (last's offset in its segment is D − 1).
+            let last = braking - (count - 1) as i64 * deceleration;
+            let offset = last as u64 - leftover * deceleration as u64;
+            let segment = leftover - 1 + u64::from(offset + 1 == deceleration as u64);
+            ahead(last - deceleration + 1, -deceleration, 1 + segment)
+        };
+        self.phase = Phase::Run;
+        // The cycle that arrives (velocity zero) is the rest run's first.
+        self.set_runs(
+            0,
+            &[before, turning, accelerate, cruise, brake, bump, Run::REST],
+        );
+    }
+
+    /// Lays out the runs of a plan that are not empty, from slot `at` when it is 0, or so that
+    /// the last ends just before slot `at` (then the step after them goes to `at`), and makes
+    /// the first the current run.
+    fn set_runs(&mut self, at: usize, runs: &[Run]) {
+        let mut slot = 0;
+        for run in runs.iter().filter(|run| run.count != 0) {
+            self.runs[slot] = *run;
+            slot += 1;
+        }
+        let first = at.saturating_sub(slot);
+        if first != 0 {
+            self.runs.copy_within(0..slot, first);
+        }
+        self.runs[ELSEWHERE] = Run::ELSEWHERE;
+        self.current = first;
+    }
+
+    /// The next step goes to [`Self::step_otherwise`].
+    fn elsewhere(&mut self) {
+        self.runs[ELSEWHERE] = Run::ELSEWHERE;
+        self.current = ELSEWHERE;
+    }
+
+    /// Every cycle that is not a run of the plan: deciding from scratch, stopping.
+    #[cold]
+    #[inline(never)]
+    fn step_otherwise(&mut self) -> State {
+        let velocity = self.state.velocity.to_bits();
+        let next = match self.phase {
+            // A plan's runs never lead here; if one did, deciding from scratch takes the same
+            // velocity its run would.
+            Phase::Run | Phase::Decide => {
+                let (distance, sign) = self.ahead();
+                let ahead = i128::from(distance) * i128::from(sign | 1);
+                let next = (self.decide_ahead(ahead, (velocity ^ sign) - sign) ^ sign) - sign;
+                self.state = self.state.advanced(I32F32::from_bits(next));
+                self.plan();
+                return self.state;
+            }
+            Phase::AbruptPending { resume } => {
+                self.phase = Phase::Stopped;
+                let state = self.state.advanced(I32F32::ZERO);
+                self.state = state;
+                self.abrupt_state = Some(state);
+                if resume {
+                    self.plan();
+                } else {
+                    self.stopped();
+                }
+                return state;
+            }
+            Phase::Stopped => {
+                self.stopped();
+                0
+            }
+            Phase::Stopping => {
+                let deceleration = self.profile.deceleration;
+                let next = if velocity > 0 {
+                    (velocity - deceleration).max(0)
+                } else {
+                    (velocity + deceleration).min(0)
+                };
+                if next == 0 {
+                    self.stopped();
+                } else {
+                    self.elsewhere();
+                }
+                next
+            }
+        };
+        let state = self.state.advanced(I32F32::from_bits(next));
+        self.state = state;
+        state
+    }
+
+    /// Stopped (the next cycle is at rest): the rest run, so those cycles take the common path.
+    fn stopped(&mut self) {
+        self.phase = Phase::Stopped;
+        self.set_runs(0, &[Run::REST]);
+    }
+}
+
+impl PlannedTrapezoidal {
+    #[inline]
+    pub fn step(&mut self) -> State {
+        // `% RUNS` is free (`current` < RUNS) and spares the bounds check.
+        let current = self.current % RUNS;
+        let run = &mut self.runs[current];
+        let velocity = run.next;
+        // Every velocity of a run lies within ± the maximum velocity: no overflow.
+        run.next = velocity + run.increment;
+        run.count -= 1;
+        if run.count == 0 {
+            if current == ELSEWHERE {
+                return self.step_otherwise();
+            }
+            // The run's last cycle: the next run is already laid out.
+            self.current = current + 1;
+        }
+        advance(&mut self.state, I32F32::from_bits(velocity))
+    }
+
+    pub fn state(&self) -> State {
+        self.state
+    }
+
+    pub fn is_complete(&self) -> bool {
+        self.state.velocity == I32F32::ZERO
+            && match self.phase {
+                Phase::Run | Phase::Decide => self.destination == self.state.position.to_bits(),
+                Phase::Stopped => true,
+                Phase::Stopping => self.current == self.rest_slot,
+                Phase::AbruptPending { .. } => false,
+            }
+    }
+
+    pub fn stop(&mut self, kind: StopKind) {
+        self.phase = match (kind, self.phase) {
+            (StopKind::Smooth, Phase::AbruptPending { .. }) | (StopKind::Abrupt, _) => {
+                Phase::AbruptPending { resume: false }
+            }
+            (StopKind::Smooth, _) => Phase::Stopping,
+        };
+        if self.phase == Phase::Stopping {
+            self.plan_stop();
+        } else {
+            self.elsewhere();
+        }
+    }
+}
