@@ -15,9 +15,13 @@ mod trapezoidal;
 mod velocity;
 pub mod waveform;
 
+/// The `fixed` crate, re-exported: the state's [`I32F32`](fixed::types::I32F32) and the registers'
+/// formats, without a dependency of your own (and always the version this crate uses).
+pub use fixed;
+
 pub use error::{Error, Range};
 pub use mcx514::{DecelerationMode, Mcx514Parameters, Mcx514Trapezoidal};
 pub use scurve::{SCurve, ScurveParameters, ScurvePlan};
-pub use state::{Limits, ProfileGenerator, State, States, StopKind};
+pub use state::{AsDynGenerator, Limits, ProfileGenerator, State, States, StopKind};
 pub use trapezoidal::{Trapezoidal, TrapezoidalParameters};
 pub use velocity::{VelocityContouring, VelocityParameters};

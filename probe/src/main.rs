@@ -49,7 +49,7 @@ fn parameters(
     jerk: u32,
 ) -> Result<ScurveParameters, Error> {
     Ok(ScurveParameters {
-        destination: Destination::from_bits(destination)?,
+        destination: Destination::from_bits(destination)?.to_bits(),
         max_velocity: MaxVelocity::from_bits(velocity)?,
         // The register is 16 bits; a wider value is out of range, as from_bits would say.
         max_acceleration: ScurveAcceleration::from_bits(
