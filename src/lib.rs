@@ -8,6 +8,7 @@ mod error;
 pub mod format;
 pub mod interpolation;
 mod mcx514;
+pub mod predict;
 pub mod reference;
 mod scurve;
 mod state;
@@ -21,6 +22,7 @@ pub use fixed;
 
 pub use error::{Error, Range};
 pub use mcx514::{DecelerationMode, Mcx514Parameters, Mcx514Trapezoidal};
+pub use predict::Prediction;
 pub use scurve::{SCurve, ScurveParameters, ScurvePlan};
 pub use state::{AsDynGenerator, Limits, ProfileGenerator, State, States, StopKind};
 pub use trapezoidal::{Trapezoidal, TrapezoidalParameters};

@@ -37,6 +37,7 @@
 //! most 40 Cortex-M4 instructions.
 
 mod division;
+mod predict;
 mod remainder;
 mod schedule;
 mod search;
