@@ -6,6 +6,7 @@ mod bisect;
 pub mod conformance;
 mod error;
 pub mod format;
+pub mod gearing;
 pub mod interpolation;
 mod mcx514;
 pub mod predict;
