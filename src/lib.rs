@@ -13,6 +13,7 @@ pub mod predict;
 pub mod reference;
 mod scurve;
 mod state;
+pub mod steps;
 mod trapezoidal;
 mod velocity;
 pub mod waveform;

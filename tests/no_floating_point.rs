@@ -35,6 +35,7 @@ const SOURCES: &[(&str, &str)] = &[
     ("src/velocity.rs", include_str!("../src/velocity.rs")),
     ("src/predict.rs", include_str!("../src/predict.rs")),
     ("src/gearing.rs", include_str!("../src/gearing.rs")),
+    ("src/steps.rs", include_str!("../src/steps.rs")),
     (
         "src/scurve/predict.rs",
         include_str!("../src/scurve/predict.rs"),
