@@ -420,3 +420,55 @@ fn the_longest_scurve_move_across_the_wrap() {
     // Zero lies behind the move's way round: never reached.
     assert_eq!(future.first_cycle_at(I32F32::ZERO), None);
 }
+
+/// Predictions right after an abrupt stop's command, where the generators take their detours:
+/// an S-curve restarted on the cycle after the stop (its first step corrects the acceleration
+/// the stop left), and a trapezoid given a new maximum velocity while the stop is pending (it
+/// stops, then resumes from rest) — every cycle against stepping.
+#[test]
+fn restarts_after_abrupt_stops() {
+    use profilegen::format::juno::Acceleration;
+    use profilegen::format::mc1451a::{Jerk, MaxVelocity, ScurveAcceleration};
+    let mut axis = SCurve::new(profilegen::ScurveParameters {
+        destination: 3_000,
+        max_velocity: MaxVelocity::from_num(20.0).unwrap(),
+        max_acceleration: ScurveAcceleration::from_num(0.25).unwrap(),
+        jerk: Jerk::from_num(0.01).unwrap(),
+    })
+    .unwrap();
+    axis.states().take(60).for_each(drop);
+    axis.stop(StopKind::Abrupt);
+    axis.step();
+    assert!(axis.state().acceleration != 0, "the stop's drop");
+    axis.restart(-2_000, MaxVelocity::from_num(15.0).unwrap())
+        .unwrap();
+    let future = axis.predict().unwrap();
+    let total = axis.plan().total;
+    assert_eq!(future.completion(), Some(total));
+    let mut copy = axis.clone();
+    for n in 1..=total + 3 {
+        assert_eq!(future.state_at(n), copy.step(), "cycle {n}");
+    }
+
+    let mut axis = Trapezoidal::new(profilegen::TrapezoidalParameters {
+        destination: 5_000,
+        max_velocity: TargetVelocity::from_num(30.0).unwrap(),
+        acceleration: Acceleration::from_num(0.5).unwrap(),
+        deceleration: Acceleration::ZERO,
+        start_velocity: TargetVelocity::from_num(2.0).unwrap(),
+    })
+    .unwrap();
+    axis.states().take(40).for_each(drop);
+    axis.stop(StopKind::Abrupt);
+    axis.set_max_velocity(TargetVelocity::from_num(12.0).unwrap())
+        .unwrap();
+    let future = axis.predict().unwrap();
+    let complete = future.completion().unwrap();
+    let mut copy = axis.clone();
+    assert_eq!(future.state_at(1).velocity, 0, "the abrupt stop's cycle");
+    for n in 1..=complete + 3 {
+        assert_eq!(future.state_at(n), copy.step(), "cycle {n}");
+        assert_eq!(copy.is_complete(), n >= complete, "cycle {n}");
+    }
+    assert_eq!(copy.state().position, 5_000);
+}
