@@ -472,3 +472,10 @@ fn restarts_after_abrupt_stops() {
     }
     assert_eq!(copy.state().position, 5_000);
 }
+
+/// The prediction's size, as its documentation states it (about 6 KB).
+#[test]
+fn a_prediction_is_about_six_kilobytes() {
+    let size = core::mem::size_of::<Prediction>();
+    assert!((5_000..=7_000).contains(&size), "{size} bytes");
+}
