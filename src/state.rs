@@ -146,6 +146,31 @@ pub trait ProfileGenerator: AsDynGenerator {
     }
 }
 
+/// A borrowed generator is a generator: adapters that own theirs (a [`crate::steps::StepTimer`],
+/// a [`crate::gearing::Follower`]'s master) can borrow one instead, a trait object included.
+impl<G: ProfileGenerator + ?Sized> ProfileGenerator for &mut G {
+    #[inline]
+    fn step(&mut self) -> State {
+        (**self).step()
+    }
+
+    fn state(&self) -> State {
+        (**self).state()
+    }
+
+    fn is_complete(&self) -> bool {
+        (**self).is_complete()
+    }
+
+    fn stop(&mut self, kind: StopKind) {
+        (**self).stop(kind);
+    }
+
+    fn limits(&self) -> Limits {
+        (**self).limits()
+    }
+}
+
 /// The generator as a trait object: what lets [`ProfileGenerator::states`] and
 /// [`ProfileGenerator::states_until_complete`] be called on a `&mut dyn ProfileGenerator` as on a
 /// concrete generator (a method that returned a type naming `Self` would need `Self: Sized`,

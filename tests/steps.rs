@@ -174,3 +174,24 @@ fn ticks_do_not_drift() {
     assert_eq!(delays, last_tick);
     assert_eq!(last_tick, 3_000 * 65_536 * 1_000 / 19_661);
 }
+
+/// A timer over a borrowed trait object, the generator left with its owner: the same events as
+/// over the generator itself.
+#[test]
+fn a_timer_borrows_a_trait_object() {
+    use profilegen::format::juno::{Acceleration, TargetVelocity};
+    let parameters = profilegen::VelocityParameters {
+        velocity: TargetVelocity::from_num(-1.75).unwrap(),
+        acceleration: Acceleration::from_num(0.5).unwrap(),
+        deceleration: Acceleration::ZERO,
+    };
+    let mut owned = StepTimer::new(VelocityContouring::new(parameters).unwrap());
+    let mut axis = VelocityContouring::new(parameters).unwrap();
+    let object: &mut dyn ProfileGenerator = &mut axis;
+    let mut borrowed = StepTimer::new(object);
+    for _ in 0..50 {
+        assert!(owned.step().eq(borrowed.step()));
+    }
+    assert_eq!(axis.state(), owned.generator().state());
+    assert!(axis.state().position < -70);
+}
