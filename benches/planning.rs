@@ -24,7 +24,7 @@ use std::collections::BTreeMap;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use profilegen::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
+use profilegen::format::mc1451a::{Jerk, MaxVelocity, ScurveAcceleration};
 use profilegen::reference::scurve_duration;
 use profilegen::{SCurve, ScurveParameters};
 use rsruckig::prelude::*;
@@ -58,7 +58,7 @@ impl Move {
         let raw = moves::scurve_move(index);
         let (destination, velocity, acceleration, jerk) = raw;
         let parameters = ScurveParameters {
-            destination: Destination::from_bits(destination).expect("destination in range"),
+            destination,
             max_velocity: MaxVelocity::from_bits(velocity).expect("velocity in range"),
             max_acceleration: ScurveAcceleration::from_bits(acceleration)
                 .expect("acceleration in range"),

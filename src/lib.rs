@@ -6,20 +6,28 @@ mod bisect;
 pub mod conformance;
 mod error;
 pub mod format;
+pub mod gearing;
 pub mod interpolation;
 mod mcx514;
+pub mod predict;
 pub mod reference;
 mod scurve;
 mod state;
+pub mod steps;
 mod trapezoidal;
 mod velocity;
 pub mod waveform;
+
+/// The `fixed` crate, re-exported: the state's [`I32F32`](fixed::types::I32F32) and the registers'
+/// formats, without a dependency of your own (and always the version this crate uses).
+pub use fixed;
 
 pub use error::{Error, Range};
 pub use mcx514::{
     DecelerationMode, Mcx514Parameters, Mcx514SCurve, Mcx514ScurveParameters, Mcx514Trapezoidal,
 };
+pub use predict::Prediction;
 pub use scurve::{SCurve, ScurveParameters, ScurvePlan};
-pub use state::{Limits, ProfileGenerator, State, States, StopKind};
+pub use state::{AsDynGenerator, Limits, ProfileGenerator, State, States, StopKind};
 pub use trapezoidal::{Trapezoidal, TrapezoidalParameters};
 pub use velocity::{VelocityContouring, VelocityParameters};

@@ -99,7 +99,7 @@ pub struct Limits {
 /// controller can hold `&mut dyn ProfileGenerator`.
 ///
 /// Stepping never fails and never allocates; commands that can fail live on the generators.
-pub trait ProfileGenerator {
+pub trait ProfileGenerator: AsDynGenerator {
     /// Advances one cycle and returns the new state.
     fn step(&mut self) -> State;
 
@@ -116,35 +116,80 @@ pub trait ProfileGenerator {
     /// The limits that governed the most recent cycle.
     fn limits(&self) -> Limits;
 
-    /// An iterator over the states of the coming cycles, without end.
-    fn states(&mut self) -> States<'_, Self>
-    where
-        Self: Sized,
-    {
-        States {
-            generator: self,
-            until_complete: false,
-            done: false,
-        }
+    /// An iterator over the states of the coming cycles, without end. Works on a
+    /// `&mut dyn ProfileGenerator` too.
+    ///
+    /// ```
+    /// use profilegen::format::juno::{Acceleration, TargetVelocity};
+    /// use profilegen::{ProfileGenerator, StopKind, VelocityContouring, VelocityParameters};
+    ///
+    /// let mut axis = VelocityContouring::new(VelocityParameters {
+    ///     velocity: TargetVelocity::from_num(1.0)?,
+    ///     acceleration: Acceleration::from_num(0.25)?,
+    ///     deceleration: Acceleration::ZERO,
+    /// })?;
+    /// let axis: &mut dyn ProfileGenerator = &mut axis;
+    /// assert_eq!(axis.states().take(3).count(), 3);
+    /// axis.stop(StopKind::Smooth);
+    /// assert_eq!(axis.states_until_complete().last().unwrap().velocity, 0);
+    /// # Ok::<(), profilegen::Error>(())
+    /// ```
+    fn states(&mut self) -> States<'_, dyn ProfileGenerator + '_> {
+        States::new(self.as_dyn(), false)
     }
 
     /// An iterator over the states of the coming cycles that ends with the cycle on which the
-    /// generator is complete (yielding nothing if it is complete already).
-    fn states_until_complete(&mut self) -> States<'_, Self>
-    where
-        Self: Sized,
-    {
-        let done = self.is_complete();
-        States {
-            generator: self,
-            until_complete: true,
-            done,
-        }
+    /// generator is complete (yielding nothing if it is complete already). Works on a
+    /// `&mut dyn ProfileGenerator` too.
+    fn states_until_complete(&mut self) -> States<'_, dyn ProfileGenerator + '_> {
+        States::new(self.as_dyn(), true)
     }
 }
 
-/// Iterator over a generator's states, one per cycle; see [`ProfileGenerator::states`]. Works on
-/// `dyn ProfileGenerator` too, through [`States::new`].
+/// A borrowed generator is a generator: adapters that own theirs (a [`crate::steps::StepTimer`],
+/// a [`crate::gearing::Follower`]'s master) can borrow one instead, a trait object included.
+impl<G: ProfileGenerator + ?Sized> ProfileGenerator for &mut G {
+    #[inline]
+    fn step(&mut self) -> State {
+        (**self).step()
+    }
+
+    fn state(&self) -> State {
+        (**self).state()
+    }
+
+    fn is_complete(&self) -> bool {
+        (**self).is_complete()
+    }
+
+    fn stop(&mut self, kind: StopKind) {
+        (**self).stop(kind);
+    }
+
+    fn limits(&self) -> Limits {
+        (**self).limits()
+    }
+}
+
+/// The generator as a trait object: what lets [`ProfileGenerator::states`] and
+/// [`ProfileGenerator::states_until_complete`] be called on a `&mut dyn ProfileGenerator` as on a
+/// concrete generator (a method that returned a type naming `Self` would need `Self: Sized`,
+/// and could not be called on a trait object). Implemented for every sized generator; nothing
+/// to implement by hand.
+pub trait AsDynGenerator {
+    /// `self` as a `&mut dyn ProfileGenerator`.
+    fn as_dyn(&mut self) -> &mut dyn ProfileGenerator;
+}
+
+impl<G: ProfileGenerator> AsDynGenerator for G {
+    #[inline]
+    fn as_dyn(&mut self) -> &mut dyn ProfileGenerator {
+        self
+    }
+}
+
+/// Iterator over a generator's states, one per cycle; see [`ProfileGenerator::states`], or
+/// [`States::new`] for one over a concrete generator.
 #[derive(Debug)]
 pub struct States<'a, G: ProfileGenerator + ?Sized> {
     generator: &'a mut G,

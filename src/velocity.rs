@@ -3,6 +3,7 @@
 use fixed::types::I32F32;
 
 use crate::format::juno::{Acceleration, TargetVelocity};
+use crate::predict::{Piece, Prediction};
 use crate::state::{advance, Limits, ProfileGenerator, State, StopKind};
 use crate::Error;
 
@@ -160,6 +161,91 @@ impl VelocityContouring {
             rate_bits(self.deceleration_register)
         };
     }
+}
+
+impl VelocityContouring {
+    /// The future of this axis from its present state, for as long as it gets no further
+    /// command: the state after any number of cycles, the cycle on which it comes to rest after
+    /// a stop, the cycle that reaches a position — each without stepping (see [`Prediction`]).
+    ///
+    /// The rule of SPEC §6 makes at most three runs of constant velocity change: toward zero at
+    /// the deceleration (the cycle that reaches or crosses zero included), away from zero at the
+    /// acceleration, the last cycle of each cut at the target; then the target velocity for
+    /// ever. Each run's length is one division.
+    ///
+    /// ```
+    /// use profilegen::format::juno::{Acceleration, TargetVelocity};
+    /// use profilegen::{ProfileGenerator, VelocityContouring, VelocityParameters};
+    ///
+    /// let mut axis = VelocityContouring::new(VelocityParameters {
+    ///     velocity: TargetVelocity::from_num(2.0)?,
+    ///     acceleration: Acceleration::from_num(0.5)?,
+    ///     deceleration: Acceleration::ZERO,
+    /// })?;
+    /// let future = axis.predict();
+    /// assert_eq!(future.completion(), None, "it never stops by itself");
+    /// // Velocities 0.5, 1, 1.5, 2, 2, …: positions 0.5, 1.5, 3, 5, 7, …
+    /// assert_eq!(future.state_at(5).position, 7);
+    /// assert_eq!(future.first_cycle_at(4.into()), Some(4));
+    /// assert_eq!(axis.states().nth(4), Some(future.state_at(5)));
+    /// # Ok::<(), profilegen::Error>(())
+    /// ```
+    pub fn predict(&self) -> Prediction {
+        if self.abrupt_pending {
+            // The abrupt stop's cycle (velocity zero, position held), then at rest.
+            let pieces = [Piece::constant(0, 1), Piece::constant(0, 0)];
+            if let Some(prediction) = Prediction::new(self.state, &pieces) {
+                return prediction;
+            }
+        }
+        let velocity = self.state.velocity.to_bits();
+        // In the frame where the target is not below the velocity (mirrored by `sign`, the
+        // rule being symmetric): toward zero at D while the velocity is negative, then at A.
+        let sign = if self.target_velocity < velocity {
+            -1
+        } else {
+            1
+        };
+        let (velocity, target) = (velocity * sign, self.target_velocity * sign);
+        let turn = |v: i64| v * sign;
+        let mut pieces = [Piece::constant(0, 0); 5];
+        let mut count = 0;
+        let mut push = |next: i64, increment: i64, cycles: u64| {
+            if let Some(slot) = pieces.get_mut(count) {
+                *slot = Piece::run(turn(next), turn(increment), cycles);
+                count += 1;
+            }
+        };
+        // Velocities below 2^47 in magnitude and rates ≥ 2^8: every count below 2^40, every
+        // sum below 2^48.
+        let mut from = velocity;
+        if from < 0 && from < target {
+            // Steps at D while the velocity before them is negative: ⌈−v / D⌉ of them reach
+            // or cross zero, fewer if the target comes first (⌈(target − v) / D⌉).
+            let deceleration = self.deceleration;
+            let steps = ceiling(-from, deceleration).min(ceiling(target - from, deceleration));
+            push(from + deceleration, deceleration, steps - 1);
+            let last = (from + deceleration * steps as i64).min(target);
+            push(last, 0, 1);
+            from = last;
+        }
+        if from < target {
+            let acceleration = self.acceleration;
+            let steps = ceiling(target - from, acceleration);
+            push(from + acceleration, acceleration, steps - 1);
+        }
+        // The target for ever (the first of its cycles lands on it).
+        push(target, 0, 0);
+        Prediction::new(self.state, &pieces[..count]).unwrap_or_else(|| {
+            // Five pieces never exceed the capacity; at rest, for the type's sake.
+            Prediction::new(self.state, &[Piece::constant(0, 0)]).expect("one piece fits")
+        })
+    }
+}
+
+/// ⌈a / b⌉ for a ≥ 0, b > 0, as a count.
+fn ceiling(a: i64, b: i64) -> u64 {
+    (a.max(0) as u64).div_ceil(b as u64)
 }
 
 impl ProfileGenerator for VelocityContouring {

@@ -8,7 +8,7 @@
 //! every resolution; each [`MicrostepTable`] keeps its electrical cycle's outputs, scaled, so a
 //! lookup is three loads.
 
-use crate::{Error, ProfileGenerator, State};
+use crate::{Error, ProfileGenerator, State, States};
 
 include!(concat!(env!("OUT_DIR"), "/quarter_cosine.rs"));
 
@@ -292,14 +292,26 @@ impl MicrostepTable {
 
     /// Drives the table from a profile generator: an iterator over the phase outputs of each
     /// coming cycle, from the integer part (floor) of the commanded position, as the chip's
-    /// position register holds it.
+    /// position register holds it. Without end; see [`Self::drive_until_complete`].
     pub fn drive<'a, G: ProfileGenerator + ?Sized>(
         &'a self,
         generator: &'a mut G,
     ) -> Microstepper<'a, G> {
         Microstepper {
             table: self,
-            generator,
+            states: States::new(generator, false),
+        }
+    }
+
+    /// As [`Self::drive`], ending with the cycle on which the generator is complete (nothing if
+    /// it is complete already), as [`ProfileGenerator::states_until_complete`] does.
+    pub fn drive_until_complete<'a, G: ProfileGenerator + ?Sized>(
+        &'a self,
+        generator: &'a mut G,
+    ) -> Microstepper<'a, G> {
+        Microstepper {
+            table: self,
+            states: States::new(generator, true),
         }
     }
 }
@@ -308,14 +320,14 @@ impl MicrostepTable {
 #[derive(Debug)]
 pub struct Microstepper<'a, G: ProfileGenerator + ?Sized> {
     table: &'a MicrostepTable,
-    generator: &'a mut G,
+    states: States<'a, G>,
 }
 
 impl<G: ProfileGenerator + ?Sized> Iterator for Microstepper<'_, G> {
     type Item = (State, PhaseOutputs);
 
     fn next(&mut self) -> Option<Self::Item> {
-        let state = self.generator.step();
+        let state = self.states.next()?;
         // The integer part: I32F32 bits shifted right 32 (floor, like the chip's register).
         let microstep = (state.position.to_bits() >> 32) as i32;
         Some((state, self.table.outputs(microstep)))

@@ -107,9 +107,43 @@ fn a_non_zero_value_that_rounds_to_zero_is_refused() {
 }
 
 #[test]
+fn an_scurve_destination_outside_the_register_is_refused() {
+    // The MC1451A destination register holds −2^30 … 2^30 − 1 counts (SPEC §3).
+    let parameters = ScurveParameters {
+        destination: 1 << 30,
+        max_velocity: MaxVelocity::from_num(2.0).unwrap(),
+        max_acceleration: ScurveAcceleration::from_num(0.1).unwrap(),
+        jerk: Jerk::from_num(0.01).unwrap(),
+    };
+    let text = message(SCurve::new(parameters));
+    assert_contains(&text, &["destination", "1073741824", "-1073741824"]);
+    let mut axis = SCurve::new(ScurveParameters {
+        destination: -(1 << 30),
+        ..parameters
+    })
+    .unwrap();
+    let plan = axis.plan();
+    // Moving: refused. At rest (a fresh axis at the destination 0): out of range, nothing changes.
+    assert!(axis.set_destination(-(1 << 30) - 1).is_err());
+    assert_eq!(axis.plan(), plan);
+}
+
+#[test]
+fn times_in_seconds_name_their_range() {
+    let cycle = CycleTime::MC1451A;
+    // 1 s at 330 µs is 3,030.30… cycles: 3,030 whole ones.
+    assert_eq!(cycle.cycles_at(1.0).unwrap(), 3_030);
+    assert_eq!(cycle.cycles_at(0.0).unwrap(), 0);
+    assert_contains(&message(cycle.cycles_at(-1.0)), &["time", "-1"]);
+    assert_contains(&message(cycle.cycles_at(f64::NAN)), &["time"]);
+    assert_contains(&message(cycle.cycles_at(1e30)), &["time"]);
+    assert!((cycle.seconds_for(3_030) - 0.9999).abs() < 1e-12);
+}
+
+#[test]
 fn a_zero_parameter_says_what_a_usable_value_is() {
     let parameters = ScurveParameters {
-        destination: Destination::from_num(100.0).unwrap(),
+        destination: 100,
         max_velocity: MaxVelocity::from_num(2.0).unwrap(),
         max_acceleration: ScurveAcceleration::from_num(0.1).unwrap(),
         jerk: Jerk::ZERO,

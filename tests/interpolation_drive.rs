@@ -7,7 +7,7 @@
 use fixed::types::I32F32;
 use profilegen::conformance::check_identities;
 use profilegen::format::juno::{Acceleration, TargetVelocity};
-use profilegen::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
+use profilegen::format::mc1451a::{Jerk, MaxVelocity, ScurveAcceleration};
 use profilegen::interpolation::{InterpolationState, Line};
 use profilegen::{
     ProfileGenerator, SCurve, ScurveParameters, StopKind, Trapezoidal, TrapezoidalParameters,
@@ -26,7 +26,7 @@ fn trapezoid(steps: u32, velocity: f64, acceleration: f64) -> Trapezoidal {
 
 fn scurve(steps: u32) -> SCurve {
     SCurve::new(ScurveParameters {
-        destination: Destination::from_bits(steps as i32).unwrap(),
+        destination: steps as i32,
         max_velocity: MaxVelocity::from_num(3_000.0).unwrap(),
         max_acceleration: ScurveAcceleration::from_num(0.25).unwrap(),
         jerk: Jerk::from_num(0.001).unwrap(),

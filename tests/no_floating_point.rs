@@ -33,6 +33,17 @@ const SOURCES: &[(&str, &str)] = &[
         include_str!("../src/trapezoidal/landing.rs"),
     ),
     ("src/velocity.rs", include_str!("../src/velocity.rs")),
+    ("src/predict.rs", include_str!("../src/predict.rs")),
+    ("src/gearing.rs", include_str!("../src/gearing.rs")),
+    ("src/steps.rs", include_str!("../src/steps.rs")),
+    (
+        "src/scurve/predict.rs",
+        include_str!("../src/scurve/predict.rs"),
+    ),
+    (
+        "src/trapezoidal/predict.rs",
+        include_str!("../src/trapezoidal/predict.rs"),
+    ),
     ("src/state.rs", include_str!("../src/state.rs")),
     ("src/waveform.rs", include_str!("../src/waveform.rs")),
     ("src/mcx514/mod.rs", include_str!("../src/mcx514/mod.rs")),

@@ -16,7 +16,7 @@ use strategies::{any_scurve_move, scurve_move};
 
 fn parameters(destination: f64, velocity: f64, acceleration: f64, jerk: f64) -> ScurveParameters {
     ScurveParameters {
-        destination: Destination::from_num(destination).unwrap(),
+        destination: Destination::from_num(destination).unwrap().to_bits(),
         max_velocity: MaxVelocity::from_num(velocity).unwrap(),
         max_acceleration: ScurveAcceleration::from_num(acceleration).unwrap(),
         jerk: Jerk::from_num(jerk).unwrap(),
@@ -27,7 +27,7 @@ fn parameters(destination: f64, velocity: f64, acceleration: f64, jerk: f64) -> 
 /// |acceleration| ≤ A, |velocity| ≤ V on every cycle) and checks that the position never moves
 /// away from the destination. Returns every state after the first.
 fn run_move(axis: &mut SCurve) -> Result<Vec<State>, TestCaseError> {
-    let destination = I32F32::from_num(axis.parameters().destination.to_bits());
+    let destination = I32F32::from_num(axis.parameters().destination);
     let direction = (destination - axis.state().position).signum();
     let mut checker = Checker::new(axis);
     let mut states = Vec::new();
@@ -96,7 +96,7 @@ fn truncated_no_constant_acceleration() {
     // of constant acceleration *below* the maximum as a rounding of the ramps.
     assert!(plan.phases[1] <= 2 && plan.phases[5] <= 2, "{plan:?}");
     assert!(
-        plan.peak_acceleration < I32F32::from_num(0.4).to_bits() / 4,
+        plan.peak_acceleration.to_bits() < I32F32::from_num(0.4).to_bits() / 4,
         "far below the maximum"
     );
     assert!(
@@ -113,7 +113,7 @@ fn truncated_no_cruise() {
     let p = parameters(200.0, 100.0, 0.4, 0.01); // far too short to reach 100 counts/cycle
     let mut axis = SCurve::new(p).unwrap();
     let plan = axis.plan();
-    assert!(plan.peak_velocity < I32F32::from_num(100).to_bits());
+    assert!(plan.peak_velocity < I32F32::from_num(100));
     assert!(plan.phases[3] <= 8, "{plan:?}");
     let states = run_move(&mut axis).unwrap();
     assert_eq!(states.last().unwrap().position, 200);
@@ -149,7 +149,7 @@ fn small_jerks_stay_within_the_bound() {
         (49_985_281, 895_450, 4, 151),
     ] {
         let p = ScurveParameters {
-            destination: Destination::from_bits(counts).unwrap(),
+            destination: counts,
             max_velocity: MaxVelocity::from_bits(velocity).unwrap(),
             max_acceleration: ScurveAcceleration::from_bits(acceleration).unwrap(),
             jerk: Jerk::from_bits(jerk).unwrap(),
@@ -181,7 +181,7 @@ fn durations_over_the_register_ranges() {
     for index in 0..moves {
         let (destination, velocity, acceleration, jerk) = moves::scurve_move(index);
         let p = ScurveParameters {
-            destination: Destination::from_bits(destination).unwrap(),
+            destination,
             max_velocity: MaxVelocity::from_bits(velocity).unwrap(),
             max_acceleration: ScurveAcceleration::from_bits(acceleration).unwrap(),
             jerk: Jerk::from_bits(jerk).unwrap(),
@@ -245,7 +245,7 @@ fn changes_in_motion_are_a_command_error_and_change_nothing() {
         Err(Error::Refused { .. })
     ));
     assert!(matches!(
-        axis.set_destination(Destination::from_num(5.0).unwrap()),
+        axis.set_destination(5),
         Err(Error::Refused { .. })
     ));
     assert!(matches!(
@@ -278,7 +278,7 @@ fn abrupt_stop() {
         "the velocity register is cleared"
     );
     // A destination alone cannot restart the axis: the error says why and how.
-    let refused = axis.set_destination(Destination::ZERO).unwrap_err();
+    let refused = axis.set_destination(0).unwrap_err();
     assert!(matches!(
         refused,
         Error::Refused {
@@ -310,11 +310,8 @@ fn restart_after_a_stop() {
             }
             // Restart on the very cycle the stop completes (after an abrupt stop its
             // acceleration is still the drop).
-            axis.restart(
-                Destination::from_num(-300.0).unwrap(),
-                MaxVelocity::from_num(3.0).unwrap(),
-            )
-            .unwrap();
+            axis.restart(-300, MaxVelocity::from_num(3.0).unwrap())
+                .unwrap();
             assert_eq!(
                 axis.parameters().max_velocity,
                 MaxVelocity::from_num(3.0).unwrap()
@@ -347,11 +344,8 @@ fn a_stop_before_the_first_step() {
         axis.stop(StopKind::Abrupt);
         checker.step(&mut axis).unwrap();
         let held = axis.state().position;
-        axis.restart(
-            Destination::from_num(0.0).unwrap(),
-            MaxVelocity::from_num(1.0).unwrap(),
-        )
-        .unwrap();
+        axis.restart(0, MaxVelocity::from_num(1.0).unwrap())
+            .unwrap();
         checker.command_given(&axis);
         axis.stop(kind);
         for _ in 0..5 {
@@ -369,7 +363,7 @@ fn a_stop_before_the_first_step() {
 #[test]
 fn every_movable_distance_moves() {
     let most = ScurveParameters {
-        destination: Destination::from_bits(1).unwrap(),
+        destination: 1,
         max_velocity: MaxVelocity::from_bits(MaxVelocity::MAX_BITS).unwrap(),
         max_acceleration: ScurveAcceleration::from_bits(ScurveAcceleration::MAX_BITS).unwrap(),
         jerk: Jerk::from_bits(Jerk::MAX_BITS).unwrap(),
@@ -381,7 +375,7 @@ fn every_movable_distance_moves() {
     // A stop leaves a fraction; a slow move from there (the second reproducer).
     let start = I32F32::from_bits(3_600_973_329_122_459_033);
     let first = ScurveParameters {
-        destination: Destination::from_bits(838_416_936).unwrap(),
+        destination: 838_416_936,
         max_velocity: MaxVelocity::from_bits(50_459_415).unwrap(),
         max_acceleration: ScurveAcceleration::from_bits(336).unwrap(),
         jerk: Jerk::from_bits(1_633).unwrap(),
@@ -445,7 +439,7 @@ fn ramps_around_the_optimum_before_one_cycle_ramps() {
         (219_043_319_980, 51, 41_989_945, 12_190, 1),
     ] {
         let p = ScurveParameters {
-            destination: Destination::from_bits(destination).unwrap(),
+            destination: destination,
             max_velocity: MaxVelocity::from_bits(velocity).unwrap(),
             max_acceleration: ScurveAcceleration::from_bits(acceleration).unwrap(),
             jerk: Jerk::from_bits(jerk).unwrap(),
@@ -480,14 +474,14 @@ proptest! {
         prop_assert_eq!(plan.phases.iter().sum::<u64>(), plan.total);
         let states = run_move(&mut axis)?;
         prop_assert_eq!(states.len() as u64, plan.total);
-        let destination = I32F32::from_num(p.destination.to_bits());
+        let destination = I32F32::from_num(p.destination);
         prop_assert_eq!(*states.last().unwrap(), State::at_rest(destination));
         // The plan's peaks are the move's, to the raw unit.
         let peak_velocity = states.iter().map(|s| s.velocity.abs()).max().unwrap();
         let peak_acceleration = states.iter().map(|s| s.acceleration.abs()).max().unwrap();
-        prop_assert_eq!(peak_velocity.to_bits(), plan.peak_velocity);
-        prop_assert_eq!(peak_acceleration.to_bits(), plan.peak_acceleration);
-        let best = optimum(&p, f64::from(p.destination.to_bits()).abs());
+        prop_assert_eq!(peak_velocity, plan.peak_velocity);
+        prop_assert_eq!(peak_acceleration, plan.peak_acceleration);
+        let best = optimum(&p, f64::from(p.destination).abs());
         prop_assert!(plan.total as f64 <= best + 3.0, "{} cycles, optimum {}", plan.total, best);
     }
 
@@ -500,7 +494,7 @@ proptest! {
         offset in prop_oneof![1i64..64, 1i64..(1 << 36)],
         negative in any::<bool>(),
     ) {
-        let target = i64::from(p.destination.to_bits()) << 32;
+        let target = i64::from(p.destination) << 32;
         let start = I32F32::from_bits(if negative { target - offset } else { target + offset });
         match SCurve::with_position(p, start) {
             Ok(mut axis) => {
@@ -531,7 +525,7 @@ proptest! {
             .min(u64::from(p.max_velocity.to_bits()) << 16);
         prop_assume!(limit >= 1);
         let distance = 1 + raw % limit;
-        let target = i64::from(p.destination.to_bits()) << 32;
+        let target = i64::from(p.destination) << 32;
         let offset = distance as i64;
         let start = I32F32::from_bits(if negative { target + offset } else { target - offset });
         let mut axis = SCurve::with_position(p, start).unwrap();
@@ -547,11 +541,11 @@ proptest! {
     #[test]
     fn plans_of_any_length(p in any_scurve_move()) {
         let plan = SCurve::new(p).unwrap().plan();
-        let best = optimum(&p, f64::from(p.destination.to_bits()).abs());
+        let best = optimum(&p, f64::from(p.destination).abs());
         prop_assert!(plan.total > 0 && plan.peak_velocity > 0, "a move is planned");
         prop_assert!(plan.total as f64 <= best + 3.0, "{} cycles, optimum {}", plan.total, best);
-        prop_assert!(plan.peak_velocity <= i64::from(p.max_velocity.to_bits()) << 16);
-        prop_assert!(plan.peak_acceleration <= i64::from(p.max_acceleration.to_bits()) << 16);
+        prop_assert!(plan.peak_velocity.to_bits() <= i64::from(p.max_velocity.to_bits()) << 16);
+        prop_assert!(plan.peak_acceleration.to_bits() <= i64::from(p.max_acceleration.to_bits()) << 16);
         prop_assert_eq!(plan.phases.iter().sum::<u64>(), plan.total);
     }
 

@@ -267,3 +267,26 @@ fn reduction_at_the_extremes() {
         }
     }
 }
+
+#[test]
+fn drive_until_complete_ends_with_the_move() {
+    // 1 microstep/cycle² up to 4 then a smooth stop: velocities 1, 2, 3, 4, then 3, 2, 1, 0 —
+    // the until-complete drive ends on the cycle that reaches rest, at 1+2+3+4+3+2+1 = 16.
+    let mut axis = VelocityContouring::new(VelocityParameters {
+        velocity: TargetVelocity::from_num(4.0).unwrap(),
+        acceleration: Acceleration::from_num(1.0).unwrap(),
+        deceleration: Acceleration::ZERO,
+    })
+    .unwrap();
+    let table = MicrostepTable::new(16, Phases::Three).unwrap();
+    assert_eq!(table.drive(&mut axis).take(4).count(), 4);
+    profilegen::ProfileGenerator::stop(&mut axis, profilegen::StopKind::Smooth);
+    let rows: Vec<_> = table.drive_until_complete(&mut axis).collect();
+    assert_eq!(rows.len(), 4);
+    let (last, outputs) = rows[3];
+    assert_eq!((last.position, last.velocity), (16.into(), 0.into()));
+    assert_eq!(outputs, table.outputs(16));
+    // Complete already: nothing more, on a trait object too.
+    let axis: &mut dyn profilegen::ProfileGenerator = &mut axis;
+    assert_eq!(table.drive_until_complete(axis).count(), 0);
+}

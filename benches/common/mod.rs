@@ -3,7 +3,7 @@
 #![allow(dead_code)] // each user takes what it measures
 
 use profilegen::format::juno::{Acceleration, TargetVelocity};
-use profilegen::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
+use profilegen::format::mc1451a::{Jerk, MaxVelocity, ScurveAcceleration};
 use profilegen::waveform::{MicrostepTable, Phases};
 use profilegen::{
     ProfileGenerator, SCurve, ScurveParameters, Trapezoidal, TrapezoidalParameters,
@@ -46,7 +46,7 @@ pub fn trapezoidal() -> Trapezoidal {
 
 pub fn scurve_parameters() -> ScurveParameters {
     ScurveParameters {
-        destination: Destination::from_num(f64::from(DISTANCE)).unwrap(),
+        destination: DISTANCE,
         max_velocity: MaxVelocity::from_num(VELOCITY).unwrap(),
         max_acceleration: ScurveAcceleration::from_num(SCURVE_ACCELERATION).unwrap(),
         jerk: Jerk::from_num(JERK).unwrap(),

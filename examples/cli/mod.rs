@@ -444,7 +444,7 @@ impl Generator {
                 start_velocity: TargetVelocity::from_num(value(Key::StartVelocity))?,
             })?),
             Mode::Scurve => Generator::Scurve(SCurve::new(ScurveParameters {
-                destination: Destination::from_num(value(Key::Destination))?,
+                destination: Destination::from_num(value(Key::Destination))?.to_bits(),
                 max_velocity: MaxVelocity::from_num(value(Key::Velocity))?,
                 max_acceleration: ScurveAcceleration::from_num(value(Key::Acceleration))?,
                 jerk: Jerk::from_num(value(Key::Jerk))?,
@@ -508,8 +508,9 @@ impl Generator {
                 // The MC1451A takes a move's parameters together: one plan for all of them.
                 let old = axis.parameters();
                 let parameters = ScurveParameters {
-                    destination: given(Key::Destination)
-                        .map_or(Ok(old.destination), Destination::from_num)?,
+                    destination: given(Key::Destination).map_or(Ok(old.destination), |x| {
+                        Destination::from_num(x).map(Destination::to_bits)
+                    })?,
                     max_velocity: given(Key::Velocity)
                         .map_or(Ok(old.max_velocity), MaxVelocity::from_num)?,
                     max_acceleration: given(Key::Acceleration)

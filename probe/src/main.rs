@@ -37,8 +37,8 @@ use core::mem::MaybeUninit;
 use core::panic::PanicInfo;
 use core::sync::atomic::{AtomicU32, Ordering};
 
+use profilegen::format::mc1451a::{Jerk, MaxVelocity, ScurveAcceleration};
 use profilegen::format::juno::{Acceleration, TargetVelocity};
-use profilegen::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
 use profilegen::format::{mcx514, CycleTime};
 use profilegen::interpolation::{
     Arc, ArcWalk, CircularDriving, Direction, InterpolationState, Line, LinearInterpolation,
@@ -62,7 +62,8 @@ fn parameters(
     jerk: u32,
 ) -> Result<ScurveParameters, Error> {
     Ok(ScurveParameters {
-        destination: Destination::from_bits(destination)?,
+        // `SCurve::new` checks the destination register's range itself.
+        destination,
         max_velocity: MaxVelocity::from_bits(velocity)?,
         // The register is 16 bits; a wider value is out of range, as from_bits would say.
         max_acceleration: ScurveAcceleration::from_bits(

@@ -1,6 +1,6 @@
 //! The cycle time and the conversions between per-second and per-cycle units (SPEC §4).
 
-use crate::{Error, Range};
+use crate::{Error, Range, State};
 
 /// A profile generator's cycle time (its sample time), in seconds.
 ///
@@ -136,6 +136,88 @@ impl CycleTime {
         }
         let magnitude = if change < 0.0 { -change } else { change };
         Ok(magnitude * self.seconds * self.seconds / seconds)
+    }
+}
+
+/// A [`State`] in physical units, for display and for users' own planning (floats at the edge
+/// only: the state itself stays exact).
+#[derive(Debug, Clone, Copy, PartialEq, PartialOrd, Default)]
+pub struct PhysicalState {
+    /// Position, counts (the nearest `f64` to the exact I32F32).
+    pub position: f64,
+    /// Velocity, counts/s.
+    pub counts_per_second: f64,
+    /// Acceleration, counts/s².
+    pub counts_per_second_squared: f64,
+}
+
+impl CycleTime {
+    /// The duration of `cycles` cycles, in seconds (e.g. a plan's `total`).
+    ///
+    /// ```
+    /// use profilegen::format::CycleTime;
+    /// assert!((CycleTime::MC1451A.seconds_for(1_000) - 0.33).abs() < 1e-12);
+    /// ```
+    pub fn seconds_for(self, cycles: u64) -> f64 {
+        cycles as f64 * self.seconds
+    }
+
+    /// The number of whole cycles stepped by `seconds` after the start, `⌊t / T⌋`: the `n` to
+    /// give `state_at(n)` for the state at time `t` (the state holds from cycle `n` until cycle
+    /// `n + 1`).
+    ///
+    /// # Errors
+    /// [`Error::NotFinite`] or [`Error::OutOfRange`] (parameter `time`, 0 … 2⁶⁴ cycles) unless
+    /// the time is finite, not negative, and under 2⁶⁴ cycles.
+    pub fn cycles_at(self, seconds: f64) -> Result<u64, Error> {
+        // 2^64 as an f64 is exact; every f64 below it converts to u64 by truncation (floor
+        // for non-negative values).
+        const CYCLES_LIMIT: f64 = 18_446_744_073_709_551_616.0;
+        let range = Range {
+            min: 0.0,
+            max: CYCLES_LIMIT * self.seconds,
+            resolution: self.seconds,
+            unit: "s",
+        };
+        let parameter = "time";
+        if !seconds.is_finite() {
+            return Err(Error::NotFinite {
+                parameter,
+                value: seconds,
+                range,
+            });
+        }
+        let cycles = seconds / self.seconds;
+        if !(0.0..CYCLES_LIMIT).contains(&cycles) {
+            return Err(Error::OutOfRange {
+                parameter,
+                value: seconds,
+                range,
+            });
+        }
+        Ok(cycles as u64)
+    }
+
+    /// A state in physical units: counts, counts/s (`v / T`), counts/s² (`a / T²`).
+    ///
+    /// ```
+    /// use profilegen::fixed::types::I32F32;
+    /// use profilegen::format::CycleTime;
+    /// use profilegen::State;
+    ///
+    /// let state = State { position: I32F32::from_num(10), velocity: I32F32::from_num(0.5),
+    ///     acceleration: I32F32::from_num(0.25) };
+    /// let physical = CycleTime::from_seconds(0.5)?.physical(state);
+    /// assert_eq!((physical.position, physical.counts_per_second), (10.0, 1.0));
+    /// assert_eq!(physical.counts_per_second_squared, 1.0);
+    /// # Ok::<(), profilegen::Error>(())
+    /// ```
+    pub fn physical(self, state: State) -> PhysicalState {
+        PhysicalState {
+            position: state.position.to_num(),
+            counts_per_second: self.per_second(state.velocity.to_num(), 1),
+            counts_per_second_squared: self.per_second(state.acceleration.to_num(), 2),
+        }
     }
 }
 

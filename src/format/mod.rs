@@ -10,7 +10,7 @@ pub mod juno;
 pub mod mc1451a;
 pub mod mcx514;
 
-pub use cycle::CycleTime;
+pub use cycle::{CycleTime, PhysicalState};
 
 /// `2^52`: at and above this magnitude every `f64` is an integer.
 const TWO_POW_52: f64 = 4_503_599_627_370_496.0;

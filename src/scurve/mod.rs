@@ -30,13 +30,14 @@
 //! Planning takes a bounded number of integer operations, the same on every target (no floating
 //! point): at most eight shapes, each solved in closed form, a fixed number of notch-pair
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
-//! checked). Measured (see the README for the commands): 9,715 Cortex-M4 instructions median,
-//! 18,926 at worst over the first 1,000 random moves (25,599 over 5,000: moves of one to a few
+//! checked). Measured (see the README for the commands): 9,737 Cortex-M4 instructions median,
+//! 18,957 at worst over the first 1,000 random moves (25,622 over 5,000: moves of one to a few
 //! raw units of jerk, whose few units leave the whole remainder to the notch pairs); on the x86
 //! development machine a few hundred nanoseconds median, under about 2 µs at worst. A step is at
 //! most 40 Cortex-M4 instructions.
 
 mod division;
+mod predict;
 mod remainder;
 mod schedule;
 mod search;
@@ -53,8 +54,9 @@ use schedule::{Limits64, Schedule, SENTINEL};
 /// The parameters of an S-curve move, in MC1451A register formats.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct ScurveParameters {
-    /// Destination, counts (±2³⁰).
-    pub destination: Destination,
+    /// Destination, counts: the MC1451A destination register's range, −2³⁰ … 2³⁰ − 1
+    /// ([`Destination`]); the same plain count as [`crate::TrapezoidalParameters::destination`].
+    pub destination: i32,
     /// Maximum velocity, counts/cycle (1/2¹⁶), non-zero.
     pub max_velocity: MaxVelocity,
     /// Maximum acceleration, counts/cycle² (16 bits, 1/2¹⁶), non-zero.
@@ -73,11 +75,11 @@ pub struct ScurvePlan {
     /// acceleration zero), inclusive: the move is complete after this many steps.
     pub total: u64,
     /// The largest acceleration magnitude on any cycle of the move (speeding up or slowing
-    /// down), I32F32 bits: exactly what stepping the move shows.
-    pub peak_acceleration: i64,
-    /// The largest velocity magnitude on any cycle of the move, I32F32 bits: exactly what
+    /// down), counts/cycle²: exactly what stepping the move shows.
+    pub peak_acceleration: I32F32,
+    /// The largest velocity magnitude on any cycle of the move, counts/cycle: exactly what
     /// stepping the move shows.
-    pub peak_velocity: i64,
+    pub peak_velocity: I32F32,
 }
 
 /// Whether the axis is moving, and how.
@@ -96,12 +98,12 @@ enum Motion {
 /// The MC1451A S-curve point-to-point generator.
 ///
 /// ```
-/// use profilegen::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
+/// use profilegen::format::mc1451a::{Jerk, MaxVelocity, ScurveAcceleration};
 /// use profilegen::{ProfileGenerator, SCurve, ScurveParameters};
 ///
 /// // The datasheet's numbers: velocity 2.75, acceleration 0.175, jerk 0.0075.
 /// let mut axis = SCurve::new(ScurveParameters {
-///     destination: Destination::from_num(1_000.0)?,
+///     destination: 1_000,
 ///     max_velocity: MaxVelocity::from_num(2.75)?,
 ///     max_acceleration: ScurveAcceleration::from_num(0.175)?,
 ///     jerk: Jerk::from_num(0.0075)?,
@@ -144,7 +146,26 @@ pub struct SCurve {
 
 const REFUSED_IN_MOTION: &str = "while an S-curve move is in motion (MC1451A command error)";
 
+/// The error of a destination outside its register.
+#[cold]
+#[inline(never)]
+fn destination_error(destination: i32) -> Error {
+    match Destination::from_bits(destination) {
+        Err(error) => error,
+        Ok(_) => Error::Refused {
+            parameter: "destination",
+            reason: "outside the register's range",
+        },
+    }
+}
+
 fn check(parameters: &ScurveParameters) -> Result<Limits64, Error> {
+    // The destination register's range (±2^30 counts): two comparisons; its own error (built
+    // off the planning path) names it.
+    let destination = parameters.destination;
+    if !(Destination::MIN_BITS..=Destination::MAX_BITS).contains(&destination) {
+        return Err(destination_error(destination));
+    }
     if parameters.max_velocity.is_zero() {
         return Err(Error::Zero {
             parameter: "velocity",
@@ -179,7 +200,7 @@ fn plan_move(
     position: I32F32,
     out: &mut Schedule,
 ) -> Result<i64, Error> {
-    let target = i64::from(parameters.destination.to_bits()) << 32;
+    let target = i64::from(parameters.destination) << 32;
     // The signed distance modulo the 32-bit position register: the short way round.
     let distance = target.wrapping_sub(position.to_bits());
     let direction = if distance < 0 { -1 } else { 1 };
@@ -221,7 +242,8 @@ impl SCurve {
     /// starts on the first step.
     ///
     /// # Errors
-    /// [`Error::Zero`] for a zero maximum velocity, maximum acceleration or jerk;
+    /// [`Error::OutOfRange`] for a destination outside −2³⁰ … 2³⁰ − 1 counts (the MC1451A
+    /// register); [`Error::Zero`] for a zero maximum velocity, maximum acceleration or jerk;
     /// [`Error::Unreachable`] for a destination 2^-32 counts away with a jerk of 2^-32
     /// counts/cycle³, the one distance no jerk-limited move can cover.
     pub fn new(parameters: ScurveParameters) -> Result<Self, Error> {
@@ -262,8 +284,8 @@ impl SCurve {
         // The peaks are found when asked for, off the planning path: one pass over the replay.
         let replay = self.schedule.replay(self.direction, self.limits);
         ScurvePlan {
-            peak_acceleration: replay.peak_acceleration,
-            peak_velocity: replay.peak_velocity,
+            peak_acceleration: I32F32::from_bits(replay.peak_acceleration),
+            peak_velocity: I32F32::from_bits(replay.peak_velocity),
             ..self.schedule.plan
         }
     }
@@ -286,6 +308,7 @@ impl SCurve {
     ///
     /// # Errors
     /// [`Error::Refused`] while moving (the MC1451A "command error"; nothing changes);
+    /// [`Error::OutOfRange`] for a destination outside the register's range;
     /// [`Error::Zero`] for a zero maximum velocity, acceleration or jerk;
     /// [`Error::Unreachable`] as for [`Self::new`]. Nothing changes on an error.
     pub fn set_parameters(&mut self, parameters: ScurveParameters) -> Result<(), Error> {
@@ -313,7 +336,7 @@ impl SCurve {
     /// # Errors
     /// As [`Self::set_parameters`]; after a stop, [`Error::Refused`]: the stop cleared the
     /// velocity register, so a new move needs a velocity too ([`Self::restart`]).
-    pub fn set_destination(&mut self, destination: Destination) -> Result<(), Error> {
+    pub fn set_destination(&mut self, destination: i32) -> Result<(), Error> {
         if self.velocity_cleared && self.is_complete() {
             return Err(Error::Refused {
                 parameter: "destination",
@@ -332,11 +355,11 @@ impl SCurve {
     /// axis rests — the MC1451A way to restart after a stop cleared the velocity register.
     ///
     /// ```
-    /// use profilegen::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
+    /// use profilegen::format::mc1451a::{Jerk, MaxVelocity, ScurveAcceleration};
     /// use profilegen::{ProfileGenerator, SCurve, ScurveParameters, StopKind};
     ///
     /// let mut axis = SCurve::new(ScurveParameters {
-    ///     destination: Destination::from_num(1_000.0)?,
+    ///     destination: 1_000,
     ///     max_velocity: MaxVelocity::from_num(2.0)?,
     ///     max_acceleration: ScurveAcceleration::from_num(0.1)?,
     ///     jerk: Jerk::from_num(0.01)?,
@@ -344,7 +367,7 @@ impl SCurve {
     /// axis.states().take(40).for_each(drop);
     /// axis.stop(StopKind::Smooth);
     /// axis.states_until_complete().for_each(drop);
-    /// axis.restart(Destination::from_num(-500.0)?, MaxVelocity::from_num(3.0)?)?;
+    /// axis.restart(-500, MaxVelocity::from_num(3.0)?)?;
     /// let last = axis.states_until_complete().last().unwrap();
     /// assert_eq!(last.position, -500);
     /// # Ok::<(), profilegen::Error>(())
@@ -352,11 +375,7 @@ impl SCurve {
     ///
     /// # Errors
     /// As [`Self::set_parameters`].
-    pub fn restart(
-        &mut self,
-        destination: Destination,
-        max_velocity: MaxVelocity,
-    ) -> Result<(), Error> {
+    pub fn restart(&mut self, destination: i32, max_velocity: MaxVelocity) -> Result<(), Error> {
         self.set_parameters(ScurveParameters {
             destination,
             max_velocity,
@@ -637,7 +656,7 @@ mod tests {
         ) {
             let destination = if negative { -(destination as i32) } else { destination as i32 };
             let parameters = ScurveParameters {
-                destination: Destination::from_bits(destination).unwrap(),
+                destination,
                 max_velocity: MaxVelocity::from_bits(velocity as u32).unwrap(),
                 max_acceleration: ScurveAcceleration::from_bits(acceleration as u16).unwrap(),
                 jerk: Jerk::from_bits(jerk as u32).unwrap(),

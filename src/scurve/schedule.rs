@@ -1,6 +1,8 @@
 //! The schedule: the plan as a sorted list of jerk changes, built once for the plan that won, and
 //! its one pass that finds the move's peaks (and confirms its limits).
 
+use fixed::types::I32F32;
+
 use super::remainder::{Notch, Placement, MAX_NOTCHES};
 use super::shape::{corners, MainMove};
 use super::ScurvePlan;
@@ -192,8 +194,8 @@ impl Schedule {
         plan: ScurvePlan {
             phases: [0; 7],
             total: 0,
-            peak_acceleration: 0,
-            peak_velocity: 0,
+            peak_acceleration: I32F32::ZERO,
+            peak_velocity: I32F32::ZERO,
         },
     };
 
@@ -240,8 +242,8 @@ impl Schedule {
         self.plan = ScurvePlan {
             phases: [1, 0, 1, 0, 0, 0, 1],
             total: 3,
-            peak_acceleration: 0,
-            peak_velocity: 0,
+            peak_acceleration: I32F32::ZERO,
+            peak_velocity: I32F32::ZERO,
         };
         self.seal(&Placement::default(), direction);
     }
@@ -301,8 +303,8 @@ impl Schedule {
         // Written in place, field by field (a summary built apart would be copied in).
         self.plan.phases = [a, b - a, a, cruise, a, b - a, a];
         self.plan.total = total;
-        self.plan.peak_acceleration = 0;
-        self.plan.peak_velocity = 0;
+        self.plan.peak_acceleration = I32F32::ZERO;
+        self.plan.peak_velocity = I32F32::ZERO;
         // The groups of a unit mix differ from the longest ramps and cruise (a, b, c) by at most
         // one cycle each, so the eight corners of all of them fall on at most 20 cycles: the
         // corner `s` of a group with ramps one shorter by (δa, δb, δc) lands δ = the sum of the

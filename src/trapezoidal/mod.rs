@@ -3,6 +3,7 @@
 //! the present state so that every parameter can change in motion.
 
 mod landing;
+mod predict;
 
 use fixed::types::I32F32;
 

@@ -184,7 +184,7 @@ pub fn trapezoidal_command() -> impl Strategy<Value = TrapezoidalCommand> {
     ]
 }
 
-use profilegen::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
+use profilegen::format::mc1451a::{Jerk, MaxVelocity, ScurveAcceleration};
 use profilegen::ScurveParameters;
 
 /// The longest S-curve move (cycles of the continuous-time optimum) the strategy makes.
@@ -217,10 +217,7 @@ pub fn scurve_move() -> impl Strategy<Value = ScurveParameters> {
         })
         .prop_map(
             |(destination, velocity, acceleration, jerk)| ScurveParameters {
-                destination: Destination::from_bits(
-                    destination.clamp(-(1 << 30), (1 << 30) - 1) as i32
-                )
-                .unwrap(),
+                destination: destination.clamp(-(1 << 30), (1 << 30) - 1) as i32,
                 max_velocity: MaxVelocity::from_bits(velocity as u32).unwrap(),
                 max_acceleration: ScurveAcceleration::from_bits(acceleration as u16).unwrap(),
                 jerk: Jerk::from_bits(jerk as u32).unwrap(),
@@ -240,12 +237,11 @@ pub fn any_scurve_move() -> impl Strategy<Value = ScurveParameters> {
     )
         .prop_map(
             |(distance, negative, velocity, acceleration, jerk)| ScurveParameters {
-                destination: Destination::from_bits(if negative {
+                destination: if negative {
                     -(distance as i32)
                 } else {
                     distance as i32
-                })
-                .unwrap(),
+                },
                 max_velocity: MaxVelocity::from_bits(velocity as u32).unwrap(),
                 max_acceleration: ScurveAcceleration::from_bits(acceleration as u16).unwrap(),
                 jerk: Jerk::from_bits(jerk as u32).unwrap(),

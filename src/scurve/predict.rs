@@ -1,0 +1,89 @@
+//! The S-curve's future as a [`Prediction`] (SPEC §15): the run of constant jerk under way, then
+//! the schedule's remaining runs, each a segment whose closed form starts from the state before
+//! it.
+
+use crate::predict::{Piece, Prediction, MAX_SEGMENTS};
+
+use super::{Motion, SCurve};
+
+impl SCurve {
+    /// The future of this axis from its present state, for as long as it gets no further
+    /// command: the state after any number of cycles, the completion cycle and the cycle that
+    /// reaches a position, each without stepping (see [`Prediction`]). Built from the plan's
+    /// runs in one pass (at most 45 closed forms).
+    ///
+    /// `None` during a smooth stop, which the S-curve decides one cycle at a time from its state
+    /// (no schedule to read); a pending abrupt stop is predicted (its one cycle, then rest).
+    ///
+    /// ```
+    /// use profilegen::format::mc1451a::{Jerk, MaxVelocity, ScurveAcceleration};
+    /// use profilegen::{ProfileGenerator, SCurve, ScurveParameters};
+    ///
+    /// let mut axis = SCurve::new(ScurveParameters {
+    ///     destination: 1_000,
+    ///     max_velocity: MaxVelocity::from_num(2.75)?,
+    ///     max_acceleration: ScurveAcceleration::from_num(0.175)?,
+    ///     jerk: Jerk::from_num(0.0075)?,
+    /// })?;
+    /// let future = axis.predict().unwrap();
+    /// assert_eq!(future.completion(), Some(axis.plan().total));
+    /// let halfway = future.first_cycle_at(500.into()).unwrap();
+    /// let state = future.state_at(halfway);
+    /// assert_eq!(axis.states().nth(halfway as usize - 1), Some(state));
+    /// assert!(state.position >= 500);
+    /// # Ok::<(), profilegen::Error>(())
+    /// ```
+    pub fn predict(&self) -> Option<Prediction> {
+        let state = self.state;
+        let velocity = state.velocity.to_bits();
+        let mut pieces = [Piece::constant(0, 0); MAX_SEGMENTS];
+        let mut count = 0;
+        let mut push = |piece: Piece| {
+            if let Some(slot) = pieces.get_mut(count) {
+                *slot = piece;
+                count += 1;
+            }
+        };
+        match self.motion {
+            Motion::Stopping => return None,
+            // Its one cycle (velocity zero, position held), then rest.
+            Motion::AbruptPending => {
+                push(Piece::constant(0, 1));
+                push(Piece::constant(0, 0));
+            }
+            Motion::Rest => push(Piece::constant(velocity, 0)),
+            Motion::Planned if self.arrived() => push(Piece::constant(velocity, 0)),
+            Motion::Planned => {
+                // The run under way: the jerk for `countdown` more steps from the present
+                // acceleration — or, on the first step of a move started right after an abrupt
+                // stop, the plan from its start (that step's corrected jerk makes its
+                // acceleration the first run's jerk, as from acceleration zero).
+                let (acceleration, jerk, countdown, next) = if self.offset != 0 {
+                    let first = self.schedule.run(0);
+                    (0, first.jerk, first.hold, 1)
+                } else {
+                    (
+                        state.acceleration.to_bits(),
+                        self.jerk,
+                        self.countdown,
+                        self.next_change,
+                    )
+                };
+                push(Piece {
+                    cycles: countdown,
+                    c0: velocity,
+                    c1: acceleration,
+                    c2: jerk,
+                    continues: false,
+                });
+                // Each later run continues from the state the closed forms lead to; the end
+                // marker, last, holds the rest for ever.
+                for index in next..self.schedule.len() {
+                    let change = self.schedule.run(index);
+                    push(Piece::jerk_run(change.jerk, change.hold));
+                }
+            }
+        }
+        Prediction::new(state, &pieces[..count])
+    }
+}
