@@ -39,7 +39,7 @@ pub struct VelocityParameters {
 /// assert_eq!(velocities, [0.5, 1.0, 1.5, 2.0, 2.0]);
 /// # Ok::<(), profilegen::Error>(())
 /// ```
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct VelocityContouring {
     /// Target velocity as I32F32 bits (the 16.16 register shifted left 16).
     target_velocity: i64,
@@ -211,7 +211,9 @@ impl ProfileGenerator for VelocityContouring {
 
     fn limits(&self) -> Limits {
         Limits {
-            max_velocity: Some(I32F32::from_bits(velocity_bits(TargetVelocity::MAX))),
+            // The register's largest magnitude: −32768 counts/cycle, its minimum (found by the
+            // scripted tests, issue #17: the maximum, 32767.99998, refused a legal target).
+            max_velocity: Some(I32F32::from_bits(-velocity_bits(TargetVelocity::MIN))),
             max_speed_up: Some(I32F32::from_bits(self.acceleration)),
             // Toward zero, and the cycle that crosses it, at the deceleration.
             max_slow_down: Some(I32F32::from_bits(self.deceleration)),

@@ -112,7 +112,7 @@ enum Motion {
 /// assert_eq!(states.last().unwrap().position, 1_000);
 /// # Ok::<(), profilegen::Error>(())
 /// ```
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 // In declaration order, the state first: a step's hot fields then sit at the start of the
 // generator, where a Cortex-M4 stores the state with one `stm` from the generator's address.
 #[repr(C)]

@@ -207,7 +207,7 @@ const ELSEWHERE: usize = RUNS - 1;
 /// assert_eq!((last.position, last.velocity), (1_000.into(), 0.into()));
 /// # Ok::<(), profilegen::Error>(())
 /// ```
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Trapezoidal {
     // The per-cycle fields first.
     /// The run under way: an index into `runs` (always below [`RUNS`]).
