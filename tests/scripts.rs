@@ -67,3 +67,9 @@ fn scripted_velocity() {
         s.run(budget)
     });
 }
+
+#[test]
+fn scripted_trapezoidal() {
+    let budget = script::cycle_budget();
+    scripts("trapezoidal", 25_000, script::trapezoidal::script(), |s| s.run(budget));
+}
