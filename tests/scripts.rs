@@ -12,8 +12,6 @@
 
 mod script;
 
-use std::sync::atomic::Ordering;
-
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestRunner};
 
@@ -31,7 +29,6 @@ fn scripts<S: Strategy>(
         .and_then(|text| text.parse().ok())
         .unwrap_or(1.0);
     let cases = (f64::from(cases) * scale).round() as u32;
-    let budget = script::cycle_budget();
     let config = Config {
         cases,
         // Shrinking walks a script down to the fewest, smallest steps; let it finish.
@@ -40,19 +37,17 @@ fn scripts<S: Strategy>(
         failure_persistence: None,
         ..Config::default()
     };
-    let (scripts, cycles) = (
-        script::SCRIPTS.load(Ordering::Relaxed),
-        script::CYCLES.load(Ordering::Relaxed),
-    );
+    let before = script::totals();
     let started = std::time::Instant::now();
     let mut runner = TestRunner::new(config);
     let result = runner.run(&strategy, |value| {
         run(&value).map(drop).map_err(TestCaseError::fail)
     });
     println!(
-        "{name}: {} scripts, {} cycles in {:.1} s",
-        script::SCRIPTS.load(Ordering::Relaxed) - scripts,
-        script::CYCLES.load(Ordering::Relaxed) - cycles,
+        "{name}: {} scripts, {} cycles, {} known-bug exclusions, in {:.1} s",
+        script::totals().scripts - before.scripts,
+        script::totals().cycles - before.cycles,
+        script::totals().excluded - before.excluded,
         started.elapsed().as_secs_f64(),
     );
     if let Err(error) = result {
@@ -71,5 +66,15 @@ fn scripted_velocity() {
 #[test]
 fn scripted_trapezoidal() {
     let budget = script::cycle_budget();
-    scripts("trapezoidal", 25_000, script::trapezoidal::script(), |s| s.run(budget));
+    scripts("trapezoidal", 25_000, script::trapezoidal::script(), |s| {
+        s.run(budget)
+    });
+}
+
+#[test]
+fn scripted_scurve() {
+    let budget = script::cycle_budget();
+    scripts("scurve", 25_000, script::scurve::script(), |s| {
+        s.run(budget)
+    });
 }

@@ -28,7 +28,11 @@ impl Target {
 
     fn decode(bytes: &mut Bytes) -> Self {
         if bytes.byte() & 3 == 0 {
-            Target::Absolute(bytes.boosted_signed(1 << 31).clamp(i32::MIN.into(), i32::MAX.into()) as i32)
+            Target::Absolute(
+                bytes
+                    .boosted_signed(1 << 31)
+                    .clamp(i32::MIN.into(), i32::MAX.into()) as i32,
+            )
         } else {
             Target::Relative(bytes.boosted_signed(1 << 32))
         }
@@ -54,7 +58,11 @@ pub enum Command {
 
 impl Command {
     fn decode(bytes: &mut Bytes) -> Self {
-        let velocity = |bytes: &mut Bytes| bytes.boosted_signed(1 << 31).clamp(i32::MIN.into(), i32::MAX.into()) as i32;
+        let velocity = |bytes: &mut Bytes| {
+            bytes
+                .boosted_signed(1 << 31)
+                .clamp(i32::MIN.into(), i32::MAX.into()) as i32
+        };
         let rate = |bytes: &mut Bytes| bytes.boosted(Acceleration::MAX_BITS.into()) as u32;
         match bytes.byte() % 6 {
             0 => Command::Destination(Target::decode(bytes)),
@@ -107,7 +115,11 @@ impl Script {
         let velocity = bytes.boosted(i32::MAX as u64) as i32;
         let acceleration = bytes.boosted(Acceleration::MAX_BITS.into()) as u32;
         let deceleration = bytes.boosted(Acceleration::MAX_BITS.into()) as u32;
-        let start = if bytes.byte() & 1 == 0 { 0 } else { bytes.boosted(i32::MAX as u64) as i32 };
+        let start = if bytes.byte() & 1 == 0 {
+            0
+        } else {
+            bytes.boosted(i32::MAX as u64) as i32
+        };
         let position = bytes.position();
         let steps = bytes.steps(|bytes| Some(Command::decode(bytes)));
         Self {
@@ -130,7 +142,9 @@ impl Scripted for Trapezoidal {
         let position = self.state().position;
         match *command {
             Command::Destination(target) => self.set_destination(target.resolve(position)),
-            Command::MaxVelocity(bits) => self.set_max_velocity(TargetVelocity::from_bits(bits)?)?,
+            Command::MaxVelocity(bits) => {
+                self.set_max_velocity(TargetVelocity::from_bits(bits)?)?
+            }
             Command::Acceleration(bits) => self.set_acceleration(Acceleration::from_bits(bits)?)?,
             Command::Deceleration(bits) => self.set_deceleration(Acceleration::from_bits(bits)?),
             Command::StartVelocity(bits) => {
@@ -165,21 +179,26 @@ impl Scripted for Trapezoidal {
             return stopping + 2.0;
         }
         let position = counts(state.position.to_bits());
-        let stop_point = position + velocity * velocity.abs() / (2.0 * deceleration);
-        let distance = (f64::from(parameters.destination) - stop_point).abs() + velocity.abs() + 1.0;
-        stopping
-            + trapezoidal_duration(
+        let start_velocity = if state.velocity == 0 && state.acceleration == 0 {
+            parameters.start_velocity.to_f64()
+        } else {
+            0.0
+        };
+        let go = |distance: f64| {
+            trapezoidal_duration(
                 distance,
                 parameters.max_velocity.to_f64(),
                 acceleration,
                 deceleration,
-                if state.velocity == 0 && state.acceleration == 0 {
-                    parameters.start_velocity.to_f64()
-                } else {
-                    0.0
-                },
+                start_velocity,
             )
-            + 8.0
+        };
+        let destination = f64::from(parameters.destination);
+        let stop_point = position + velocity * velocity.abs() / (2.0 * deceleration);
+        let smooth = stopping + go((destination - stop_point).abs() + velocity.abs() + 1.0);
+        // An abrupt stop may be pending (invisible from outside): stopped where it is, at once.
+        let abrupt = 1.0 + go((destination - position).abs() + 1.0);
+        smooth.max(abrupt) + 8.0
     }
 
     fn velocity_register(&self) -> Option<i64> {
@@ -191,7 +210,9 @@ impl Scripted for Trapezoidal {
         let state = self.state();
         let destination = i64::from(self.parameters().destination) << 32;
         if state.velocity != 0 || (!stopped(self) && state.position.to_bits() != destination) {
-            return Err(format!("settled off the destination {destination} (bits): {state:?}"));
+            return Err(format!(
+                "settled off the destination {destination} (bits): {state:?}"
+            ));
         }
         Ok(())
     }
@@ -209,8 +230,9 @@ pub fn script() -> impl proptest::strategy::Strategy<Value = Script> {
                 .prop_map(|bits| Target::Absolute(bits.clamp(i32::MIN.into(), i32::MAX.into()) as i32)),
         ]
     };
-    let signed_velocity =
-        || boosted_signed(1 << 31).prop_map(|bits| bits.clamp(i32::MIN.into(), i32::MAX.into()) as i32);
+    let signed_velocity = || {
+        boosted_signed(1 << 31).prop_map(|bits| bits.clamp(i32::MIN.into(), i32::MAX.into()) as i32)
+    };
     let velocity = || boosted(1, i32::MAX as u64).prop_map(|bits| bits as i32);
     let rate = || boosted(0, Acceleration::MAX_BITS.into()).prop_map(|bits| bits as u32);
     let start = prop_oneof![3 => Just(0), 1 => velocity()];
@@ -222,11 +244,14 @@ pub fn script() -> impl proptest::strategy::Strategy<Value = Script> {
         1 => signed_velocity().prop_map(Command::StartVelocity),
         2 => (target(), velocity()).prop_map(|(target, velocity)| Command::Restart(target, velocity)),
     ];
-    ((target(), velocity(), rate(), rate(), start), position(), steps(command, 12)).prop_map(
-        |(parameters, position, steps)| Script {
+    (
+        (target(), velocity(), rate(), rate(), start),
+        position(),
+        steps(command, 12),
+    )
+        .prop_map(|(parameters, position, steps)| Script {
             parameters,
             position,
             steps,
-        },
-    )
+        })
 }
