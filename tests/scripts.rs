@@ -78,3 +78,11 @@ fn scripted_scurve() {
         s.run(budget)
     });
 }
+
+#[test]
+fn scripted_mcx514() {
+    let budget = script::cycle_budget();
+    scripts("mcx514", 15_000, script::mcx514::script(), |s| {
+        s.run(budget)
+    });
+}
