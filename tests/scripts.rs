@@ -86,3 +86,14 @@ fn scripted_mcx514() {
         s.run(budget)
     });
 }
+
+#[test]
+fn scripted_linear_interpolation() {
+    let budget = script::cycle_budget();
+    scripts(
+        "linear interpolation",
+        10_000,
+        script::interpolation::script(),
+        |s| s.run(budget),
+    );
+}

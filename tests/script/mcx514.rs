@@ -74,11 +74,22 @@ impl ProfileGenerator for Drive {
 }
 
 impl Script {
-    /// Builds the generator (a refusal must name an invalid register) and runs the script.
+    /// Builds the drive and runs the script.
     ///
     /// # Errors
     /// The first check that failed.
     pub fn run(&self, budget: u64) -> Result<u64, String> {
+        match self.build()? {
+            Some(drive) => super::run(drive, &self.steps, budget),
+            None => Ok(0),
+        }
+    }
+
+    /// Builds the drive: `None` if the registers are refused, as they must be then.
+    ///
+    /// # Errors
+    /// Valid registers refused.
+    pub fn build(&self) -> Result<Option<Drive>, String> {
         let (pulses, initial, drive, acceleration, deceleration, mode, cycle) = self.parameters;
         let cycle =
             CycleTime::from_seconds(CYCLES[cycle % CYCLES.len()]).map_err(|e| e.to_string())?;
@@ -102,14 +113,14 @@ impl Script {
             })
         })();
         let Ok(registers) = registers else {
-            return Ok(0); // a register out of its range: the strategy's extremes, refused
+            return Ok(None); // a register out of its range: the strategy's extremes, refused
         };
         let generator = match Mcx514Trapezoidal::new(registers, cycle) {
             Ok(generator) => generator,
             // Refused: the initial speed above the drive speed, or a register that rounds to
             // zero (or overflows) per cycle — both errors the docs name.
-            Err(_) if initial > drive || pulses > FinishPoint::MAX_BITS as u32 => return Ok(0),
-            Err(Error::Underflow { .. } | Error::OutOfRange { .. }) => return Ok(0),
+            Err(_) if initial > drive || pulses > FinishPoint::MAX_BITS as u32 => return Ok(None),
+            Err(Error::Underflow { .. } | Error::OutOfRange { .. }) => return Ok(None),
             Err(error) => return Err(format!("valid registers refused: {error}")),
         };
         let per_cycle = |value: f64, power: i32| value * cycle.seconds().powi(power);
@@ -135,14 +146,13 @@ impl Script {
             }
             Mode::Manual(_) => p / s,
         } + 3.0;
-        let drive = Drive {
+        Ok(Some(Drive {
             generator,
             finish: i64::from(pulses) << 32,
             bound,
             deceleration: d,
             elapsed: 0,
-        };
-        super::run(drive, &self.steps, budget)
+        }))
     }
 
     /// Decodes a script from raw bytes (the fuzz target).

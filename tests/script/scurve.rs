@@ -115,15 +115,26 @@ fn parameters(
 }
 
 impl Script {
-    /// Builds the generator and runs the script (refused parameters must be invalid ones).
+    /// Builds the generator and runs the script.
     ///
     /// # Errors
     /// The first check that failed.
     pub fn run(&self, budget: u64) -> Result<u64, String> {
+        match self.build()? {
+            Some(generator) => super::run(generator, &self.steps, budget),
+            None => Ok(0),
+        }
+    }
+
+    /// Builds the generator: `None` if the parameters are refused, as they must be then.
+    ///
+    /// # Errors
+    /// Valid parameters refused.
+    pub fn build(&self) -> Result<Option<SCurve>, String> {
         let parameters = parameters(self.parameters, self.position).map_err(|e| e.to_string())?;
         match SCurve::with_position(parameters, self.position) {
-            Ok(generator) => super::run(generator, &self.steps, budget),
-            Err(error) => refusal(&parameters, self.position, &error).map(|()| 0),
+            Ok(generator) => Ok(Some(generator)),
+            Err(error) => refusal(&parameters, self.position, &error).map(|()| None),
         }
     }
 

@@ -88,11 +88,22 @@ pub struct Script {
 }
 
 impl Script {
-    /// Builds the generator and runs the script (refused parameters must be invalid ones).
+    /// Builds the generator and runs the script.
     ///
     /// # Errors
     /// The first check that failed.
     pub fn run(&self, budget: u64) -> Result<u64, String> {
+        match self.build()? {
+            Some(generator) => super::run(generator, &self.steps, budget),
+            None => Ok(0),
+        }
+    }
+
+    /// Builds the generator: `None` if the parameters are refused, as they must be then.
+    ///
+    /// # Errors
+    /// Valid parameters refused.
+    pub fn build(&self) -> Result<Option<Trapezoidal>, String> {
         let (target, max_velocity, acceleration, deceleration, start_velocity) = self.parameters;
         let register = |result: Result<TargetVelocity, Error>| result.map_err(|e| e.to_string());
         let parameters = TrapezoidalParameters {
@@ -103,8 +114,8 @@ impl Script {
             start_velocity: register(TargetVelocity::from_bits(start_velocity.min(max_velocity)))?,
         };
         match Trapezoidal::with_position(parameters, self.position) {
-            Ok(generator) => super::run(generator, &self.steps, budget),
-            Err(_) if max_velocity <= 0 || acceleration == 0 || start_velocity < 0 => Ok(0),
+            Ok(generator) => Ok(Some(generator)),
+            Err(_) if max_velocity <= 0 || acceleration == 0 || start_velocity < 0 => Ok(None),
             Err(error) => Err(format!("valid parameters refused: {error}")),
         }
     }
