@@ -58,7 +58,7 @@ fn scripts<S: Strategy>(
 #[test]
 fn scripted_velocity() {
     let budget = script::cycle_budget();
-    scripts("velocity", 20_000, script::velocity::script(), |s| {
+    scripts("velocity", 22_000, script::velocity::script(), |s| {
         s.run(budget)
     });
 }
@@ -66,7 +66,7 @@ fn scripted_velocity() {
 #[test]
 fn scripted_trapezoidal() {
     let budget = script::cycle_budget();
-    scripts("trapezoidal", 25_000, script::trapezoidal::script(), |s| {
+    scripts("trapezoidal", 30_000, script::trapezoidal::script(), |s| {
         s.run(budget)
     });
 }
@@ -74,7 +74,7 @@ fn scripted_trapezoidal() {
 #[test]
 fn scripted_scurve() {
     let budget = script::cycle_budget();
-    scripts("scurve", 25_000, script::scurve::script(), |s| {
+    scripts("scurve", 30_000, script::scurve::script(), |s| {
         s.run(budget)
     });
 }
@@ -82,7 +82,7 @@ fn scripted_scurve() {
 #[test]
 fn scripted_mcx514() {
     let budget = script::cycle_budget();
-    scripts("mcx514", 15_000, script::mcx514::script(), |s| {
+    scripts("mcx514", 18_000, script::mcx514::script(), |s| {
         s.run(budget)
     });
 }
@@ -96,4 +96,12 @@ fn scripted_linear_interpolation() {
         script::interpolation::script(),
         |s| s.run(budget),
     );
+}
+
+#[test]
+fn scripted_microstep() {
+    let budget = script::cycle_budget();
+    scripts("microstep", 6_000, script::microstep::script(), |s| {
+        s.run(budget)
+    });
 }

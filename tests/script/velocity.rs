@@ -32,12 +32,22 @@ pub struct Script {
 }
 
 impl Script {
-    /// Builds the generator (`None` if the parameters are refused, as they must be then) and
-    /// runs the script.
+    /// Builds the generator and runs the script.
     ///
     /// # Errors
     /// The first check that failed.
     pub fn run(&self, budget: u64) -> Result<u64, String> {
+        match self.build()? {
+            Some(generator) => super::run(generator, &self.steps, budget),
+            None => Ok(0),
+        }
+    }
+
+    /// Builds the generator: `None` if the parameters are refused, as they must be then.
+    ///
+    /// # Errors
+    /// Valid parameters refused.
+    pub fn build(&self) -> Result<Option<VelocityContouring>, String> {
         let (velocity, acceleration, deceleration) = self.parameters;
         let parameters = VelocityParameters {
             velocity: TargetVelocity::from_bits(velocity).map_err(|e| e.to_string())?,
@@ -45,8 +55,8 @@ impl Script {
             deceleration: Acceleration::from_bits(deceleration).map_err(|e| e.to_string())?,
         };
         match VelocityContouring::with_position(parameters, self.position) {
-            Ok(generator) => super::run(generator, &self.steps, budget),
-            Err(_) if acceleration == 0 => Ok(0),
+            Ok(generator) => Ok(Some(generator)),
+            Err(_) if acceleration == 0 => Ok(None),
             Err(error) => Err(format!("valid parameters refused: {error}")),
         }
     }
@@ -158,29 +168,45 @@ impl Scripted for VelocityContouring {
     }
 }
 
-/// The proptest strategy.
+/// A new target velocity anywhere in the register, −2^31 boosted too.
 #[cfg(test)]
-pub fn script() -> impl proptest::strategy::Strategy<Value = Script> {
-    use super::{boosted, boosted_signed, position, steps};
+fn velocity() -> impl proptest::strategy::Strategy<Value = i32> {
+    use super::boosted_signed;
     use proptest::prelude::*;
-    let velocity = || {
-        prop_oneof![
-            8 => boosted_signed(1 << 31).prop_map(velocity_bits),
-            1 => Just(i32::MIN),
-        ]
-    };
+    prop_oneof![
+        8 => boosted_signed(1 << 31).prop_map(velocity_bits),
+        1 => Just(i32::MIN),
+    ]
+}
+
+/// The proptest strategy of one command.
+#[cfg(test)]
+pub fn command() -> impl proptest::strategy::Strategy<Value = Command> {
+    use super::boosted;
+    use proptest::prelude::*;
     let rate = || boosted(0, Acceleration::MAX_BITS.into()).prop_map(|bits| bits as u32);
-    let command = prop_oneof![
+    prop_oneof![
         4 => velocity().prop_map(Command::Velocity),
         1 => Just(Command::Reverse),
         2 => rate().prop_map(Command::Acceleration),
         2 => rate().prop_map(Command::Deceleration),
-    ];
-    ((velocity(), rate(), rate()), position(), steps(command, 12)).prop_map(
-        |(parameters, position, steps)| Script {
+    ]
+}
+
+/// The proptest strategy.
+#[cfg(test)]
+pub fn script() -> impl proptest::strategy::Strategy<Value = Script> {
+    use super::{boosted, position, steps};
+    use proptest::prelude::*;
+    let rate = || boosted(0, Acceleration::MAX_BITS.into()).prop_map(|bits| bits as u32);
+    (
+        (velocity(), rate(), rate()),
+        position(),
+        steps(command(), 12),
+    )
+        .prop_map(|(parameters, position, steps)| Script {
             parameters,
             position,
             steps,
-        },
-    )
+        })
 }
