@@ -92,7 +92,7 @@ fn scripted_linear_interpolation() {
     let budget = script::cycle_budget();
     scripts(
         "linear interpolation",
-        10_000,
+        12_000,
         script::interpolation::script(),
         |s| s.run(budget),
     );
