@@ -147,6 +147,9 @@ pub fn cycle_budget() -> u64 {
         .unwrap_or(4_000)
 }
 
+/// The cycles one fuzzed script may step: fewer than the tests', for more scripts a second.
+pub const FUZZ_CYCLES: u64 = 2_000;
+
 /// The cycles a `finish` steps of a motion too long for the budget before stopping it.
 const LONG_MOTION_CYCLES: u64 = 500;
 
