@@ -69,6 +69,9 @@ impl<G: Scripted, const N: usize> Scripted for Driven<G, N> {
     fn velocity_register(&self) -> Option<i64> {
         self.generator.velocity_register()
     }
+    fn predict(&self, cycles: u64) -> Option<State> {
+        self.generator.predict(cycles)
+    }
     fn check_command(&self) -> Result<(), String> {
         self.generator.check_command()
     }

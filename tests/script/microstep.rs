@@ -79,6 +79,9 @@ impl Scripted for Driven {
     fn velocity_register(&self) -> Option<i64> {
         self.generator.velocity_register()
     }
+    fn predict(&self, cycles: u64) -> Option<State> {
+        self.generator.predict(cycles)
+    }
 
     fn check_cycle(&self, previous: &State, commanded: bool) -> Result<(), String> {
         self.generator.check_cycle(previous, commanded)?;

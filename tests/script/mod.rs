@@ -6,8 +6,26 @@
 //! [`Scripted`] implementation (how a command applies to the live state, and the float-reference
 //! bound on how long its motion may take), a proptest strategy (`#[cfg(test)]`: the integration
 //! tests in `tests/scripts.rs`) and a decoder from raw bytes (the cargo-fuzz targets in `fuzz/`,
-//! which include this module by path). Adding a generator is one such file, one `mod` line below,
-//! one `#[test]` in `tests/scripts.rs` and one target in `fuzz/fuzz_targets/`.
+//! which include this module by path).
+//!
+//! Adding a generator (an MCX514 S-curve, a circular or continuous interpolation, gearing):
+//! 1. `tests/script/<name>.rs`: a `Command` enum in raw register bits (destinations as a
+//!    `Target` relative to the live position, as `trapezoidal.rs` does), `impl Scripted` for the
+//!    generator (`apply`; `settle_bound` from `profilegen::reference`; `velocity_register`; the
+//!    generator's own checks), a `Script` with `build`, `run` and `decode`, and a
+//!    `#[cfg(test)] pub fn script()` strategy built from [`boosted`], [`position`] and [`steps`];
+//! 2. `pub mod <name>;` below;
+//! 3. `#[test] fn scripted_<name>` in `tests/scripts.rs`, with a case count (the default total
+//!    stays at 100,000 scripts or more);
+//! 4. `fuzz/fuzz_targets/<name>.rs` (a copy of `velocity.rs` with the type changed), its
+//!    `[[bin]]` in `fuzz/Cargo.toml`, a few seeds in `fuzz/seeds/<name>/`, and the name in the
+//!    fuzz loop of `.ci/run`.
+//!
+//! A generator that takes no command but stops uses [`NoCommand`] and [`plain_steps`]
+//! (`mcx514.rs`); one that drives a geometry or a waveform wraps its driver and delegates
+//! (`interpolation.rs`, `microstep.rs`), so the driver's whole command surface runs through it
+//! (a gear would wrap its master the same way); prediction (`state_at`) is
+//! [`Scripted::predict`], checked against stepping on every run of cycles.
 //!
 //! The checks, for every step of every script ([`run`]):
 //! - every cycle passes the conformance suite ([`Checker`]: the identities of SPEC §5, the
@@ -18,6 +36,8 @@
 //! - `finish` runs until the motion is over within a bound derived from the float reference
 //!   (`profilegen::reference`); a motion too long to step within the script's cycle budget is
 //!   stepped to the budget, then stopped abruptly and checked ([`check_abrupt_stop`]);
+//! - a prediction k cycles ahead, for the generators that have one ([`Scripted::predict`]),
+//!   equals stepping k cycles;
 //! - each generator's own checks ([`Scripted::check_cycle`], [`Scripted::check_command`],
 //!   [`Scripted::check_settled`]).
 #![allow(dead_code)] // each test and fuzz target uses its own generator
@@ -93,6 +113,13 @@ pub trait Scripted: ProfileGenerator + Clone + PartialEq + Debug {
     /// What broke.
     fn check_command(&self) -> Result<(), String> {
         Ok(())
+    }
+
+    /// The state `cycles` steps from now without stepping (SPEC §15 prediction, `state_at`),
+    /// for the generators that have it: the runner checks it equals stepping. `None` (the
+    /// default): no prediction to check.
+    fn predict(&self, _cycles: u64) -> Option<State> {
+        None
     }
 
     /// Checks once the motion has settled after a `finish`. `stopped` as for
@@ -204,10 +231,18 @@ impl<G: Scripted> Run<G> {
     }
 
     fn cycles(&mut self, count: u64) -> Result<(), String> {
-        for _ in 0..count.min(self.left) {
+        let count = count.min(self.left);
+        let predicted = self.generator.predict(count);
+        for _ in 0..count {
             self.cycle()?;
         }
-        Ok(())
+        match predicted {
+            Some(predicted) if predicted != self.generator.state() => Err(format!(
+                "predicted {predicted:?} {count} cycles ahead, stepped to {:?}",
+                self.generator.state()
+            )),
+            _ => Ok(()),
+        }
     }
 
     fn finish(&mut self) -> Result<(), String> {
