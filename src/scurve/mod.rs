@@ -529,8 +529,14 @@ impl ProfileGenerator for SCurve {
         self.state
     }
 
+    /// At rest with the acceleration levelled off (or just after an abrupt stop, whose drop is
+    /// exempt, SPEC §9), or at the end of the plan. A smooth stop on the cycle a move arrives
+    /// (velocity zero, acceleration not yet) rests one cycle later: a move started at once would
+    /// otherwise start its jerk from that acceleration and break the jerk limit (found by the
+    /// scripted tests of issue #17).
     fn is_complete(&self) -> bool {
-        self.motion == Motion::Rest || self.arrived()
+        (self.motion == Motion::Rest && (self.state.acceleration == I32F32::ZERO || self.exempt))
+            || self.arrived()
     }
 
     fn stop(&mut self, kind: StopKind) {
