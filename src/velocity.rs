@@ -40,7 +40,7 @@ pub struct VelocityParameters {
 /// assert_eq!(velocities, [0.5, 1.0, 1.5, 2.0, 2.0]);
 /// # Ok::<(), profilegen::Error>(())
 /// ```
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct VelocityContouring {
     /// Target velocity as I32F32 bits (the 16.16 register shifted left 16).
     target_velocity: i64,
@@ -191,14 +191,14 @@ impl VelocityContouring {
     /// # Ok::<(), profilegen::Error>(())
     /// ```
     pub fn predict(&self) -> Prediction {
-        if self.abrupt_pending {
-            // The abrupt stop's cycle (velocity zero, position held), then at rest.
-            let pieces = [Piece::constant(0, 1), Piece::constant(0, 0)];
-            if let Some(prediction) = Prediction::new(self.state, &pieces) {
-                return prediction;
-            }
-        }
-        let velocity = self.state.velocity.to_bits();
+        // An abrupt stop still to come: its cycle (velocity zero, position held), then the rule
+        // from rest toward the target in force — zero, unless a velocity was given after the
+        // stop (found by the scripted tests, issue #17).
+        let velocity = if self.abrupt_pending {
+            0
+        } else {
+            self.state.velocity.to_bits()
+        };
         // In the frame where the target is not below the velocity (mirrored by `sign`, the
         // rule being symmetric): toward zero at D while the velocity is negative, then at A.
         let sign = if self.target_velocity < velocity {
@@ -208,8 +208,12 @@ impl VelocityContouring {
         };
         let (velocity, target) = (velocity * sign, self.target_velocity * sign);
         let turn = |v: i64| v * sign;
-        let mut pieces = [Piece::constant(0, 0); 5];
+        let mut pieces = [Piece::constant(0, 0); 6];
         let mut count = 0;
+        if self.abrupt_pending {
+            pieces[0] = Piece::constant(0, 1);
+            count = 1;
+        }
         let mut push = |next: i64, increment: i64, cycles: u64| {
             if let Some(slot) = pieces.get_mut(count) {
                 *slot = Piece::run(turn(next), turn(increment), cycles);
@@ -237,7 +241,7 @@ impl VelocityContouring {
         // The target for ever (the first of its cycles lands on it).
         push(target, 0, 0);
         Prediction::new(self.state, &pieces[..count]).unwrap_or_else(|| {
-            // Five pieces never exceed the capacity; at rest, for the type's sake.
+            // Six pieces never exceed the capacity (MAX_SEGMENTS): unreachable; at rest, for the type's sake.
             Prediction::new(self.state, &[Piece::constant(0, 0)]).expect("one piece fits")
         })
     }
@@ -297,7 +301,9 @@ impl ProfileGenerator for VelocityContouring {
 
     fn limits(&self) -> Limits {
         Limits {
-            max_velocity: Some(I32F32::from_bits(velocity_bits(TargetVelocity::MAX))),
+            // The register's largest magnitude: −32768 counts/cycle, its minimum (found by the
+            // scripted tests, issue #17: the maximum, 32767.99998, refused a legal target).
+            max_velocity: Some(I32F32::from_bits(-velocity_bits(TargetVelocity::MIN))),
             max_speed_up: Some(I32F32::from_bits(self.acceleration)),
             // Toward zero, and the cycle that crosses it, at the deceleration.
             max_slow_down: Some(I32F32::from_bits(self.deceleration)),

@@ -265,6 +265,55 @@ fn changes_in_motion_are_a_command_error_and_change_nothing() {
     assert_eq!(states.last().unwrap().position, -50);
 }
 
+/// Regression (issue #17, found by the scripted tests): a smooth stop on the cycle a move arrives
+/// — position on the destination and velocity zero, the acceleration not yet zero — rests one
+/// cycle later. It was complete at once, so a move started then began its jerk from zero while
+/// the axis still had that acceleration, and the first cycle broke the jerk limit.
+#[test]
+fn a_smooth_stop_on_the_arriving_cycle_levels_off_before_the_next_move() {
+    let raw = |d, v, a, j| ScurveParameters {
+        destination: d,
+        max_velocity: MaxVelocity::from_bits(v).unwrap(),
+        max_acceleration: ScurveAcceleration::from_bits(a).unwrap(),
+        jerk: Jerk::from_bits(j).unwrap(),
+    };
+    let mut axis = SCurve::new(raw(-23, 1000, 4097, 742)).unwrap();
+    let mut checker = Checker::new(&axis);
+    // The plan's second-to-last state: on the destination, velocity zero, acceleration not
+    // (the last cycle sets it to zero, SPEC §8).
+    for _ in 1..axis.duration() {
+        checker.step(&mut axis).unwrap();
+    }
+    let arriving = axis.state();
+    assert_eq!(
+        (arriving.position, arriving.velocity),
+        (I32F32::from_num(-23), I32F32::ZERO)
+    );
+    assert_ne!(arriving.acceleration, I32F32::ZERO);
+    axis.stop(StopKind::Smooth);
+    assert!(
+        !axis.is_complete(),
+        "the acceleration has not levelled off yet"
+    );
+    let next = raw(-30, 27, 118, 4096);
+    assert!(matches!(
+        axis.set_parameters(next),
+        Err(Error::Refused { .. })
+    ));
+    checker.command_given(&axis);
+    assert_eq!(
+        checker.step(&mut axis).unwrap(),
+        State::at_rest(I32F32::from_num(-23))
+    );
+    assert!(axis.is_complete());
+    // Now the next move starts from rest and keeps every limit (the stop cleared the velocity,
+    // which the new parameters reload).
+    axis.set_parameters(next).unwrap();
+    checker.command_given(&axis);
+    checker.run_until_complete(&mut axis, 1 << 20).unwrap();
+    assert_eq!(axis.state(), State::at_rest(I32F32::from_num(-30)));
+}
+
 #[test]
 fn abrupt_stop() {
     let mut axis = SCurve::new(parameters(1_000.0, 2.0, 0.1, 0.01)).unwrap();
@@ -439,7 +488,7 @@ fn ramps_around_the_optimum_before_one_cycle_ramps() {
         (219_043_319_980, 51, 41_989_945, 12_190, 1),
     ] {
         let p = ScurveParameters {
-            destination: destination,
+            destination,
             max_velocity: MaxVelocity::from_bits(velocity).unwrap(),
             max_acceleration: ScurveAcceleration::from_bits(acceleration).unwrap(),
             jerk: Jerk::from_bits(jerk).unwrap(),
@@ -567,5 +616,33 @@ proptest! {
         }
         prop_assert_eq!(axis.state().velocity, I32F32::ZERO);
         prop_assert_eq!(axis.step(), State::at_rest(axis.state().position));
+    }
+}
+
+/// Regression (found by the scripted tests after merging the closed-form smooth stop with the
+/// clamped public `Trapezoidal::braking_velocity`): a smooth stop with a jerk below 2^8 raw units
+/// must not drive the velocity below zero (it oscillated for 3,582 cycles).
+#[test]
+fn a_smooth_stop_with_a_tiny_jerk_never_reverses() {
+    let p = ScurveParameters {
+        destination: 1_073_741_823,
+        max_velocity: MaxVelocity::from_bits(31).unwrap(),
+        max_acceleration: ScurveAcceleration::from_bits(1).unwrap(),
+        jerk: Jerk::from_bits(43).unwrap(),
+    };
+    let mut axis = SCurve::new(p).unwrap();
+    for _ in 0..135 {
+        axis.step();
+    }
+    axis.stop(StopKind::Smooth);
+    let mut cycles = 0;
+    while !axis.is_complete() {
+        let state = axis.step();
+        assert!(
+            state.velocity >= 0,
+            "reversed on stop cycle {cycles}: {state:?}"
+        );
+        cycles += 1;
+        assert!(cycles < 2_000, "no rest after {cycles} cycles");
     }
 }

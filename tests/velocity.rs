@@ -131,6 +131,29 @@ fn figure_11_1() {
     assert!(states[0].acceleration == a2f, "A2 applies immediately");
 }
 
+/// Regression (issue #17, found by the scripted tests): the register's minimum, −32768
+/// counts/cycle, is a legal target, and the limit the generator reports admits it. (The
+/// reported maximum was the register's maximum, 32767.99998, and the conformance suite failed
+/// the cycle that reached −32768.)
+#[test]
+fn the_most_negative_target_velocity_conforms() {
+    let mut axis = VelocityContouring::new(VelocityParameters {
+        velocity: TargetVelocity::MIN,
+        acceleration: Acceleration::MAX,
+        deceleration: Acceleration::ZERO,
+    })
+    .unwrap();
+    let mut checker = Checker::new(&axis);
+    // 32768 / (2^31 − 1)·2^-24 = 256.0000001…: 257 cycles reach the target.
+    let states = run(&mut axis, &mut checker, 300);
+    assert_eq!(states[256].velocity, fixed(-32768.0));
+    assert_eq!(
+        states[255].velocity,
+        -fixed(Acceleration::MAX.to_f64()) * 256
+    );
+    assert_eq!(axis.limits().max_velocity, Some(fixed(32768.0)));
+}
+
 #[test]
 fn deceleration_zero_means_use_the_acceleration() {
     let parameters = VelocityParameters {

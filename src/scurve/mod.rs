@@ -114,7 +114,7 @@ enum Motion {
 /// assert_eq!(states.last().unwrap().position, 1_000);
 /// # Ok::<(), profilegen::Error>(())
 /// ```
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 // In declaration order, the state first: a step's hot fields then sit at the start of the
 // generator, where a Cortex-M4 stores the state with one `stm` from the generator's address.
 #[repr(C)]
@@ -554,8 +554,14 @@ impl ProfileGenerator for SCurve {
         self.state
     }
 
+    /// At rest with the acceleration levelled off (or just after an abrupt stop, whose drop is
+    /// exempt, SPEC §9), or at the end of the plan. A smooth stop on the cycle a move arrives
+    /// (velocity zero, acceleration not yet) rests one cycle later: a move started at once would
+    /// otherwise start its jerk from that acceleration and break the jerk limit (found by the
+    /// scripted tests of issue #17).
     fn is_complete(&self) -> bool {
-        self.motion == Motion::Rest || self.arrived()
+        (self.motion == Motion::Rest && (self.state.acceleration == I32F32::ZERO || self.exempt))
+            || self.arrived()
     }
 
     fn stop(&mut self, kind: StopKind) {

@@ -38,7 +38,9 @@ pub(super) fn stopping_acceleration(acceleration: i64, velocity: i64, limits: Li
     // ≥ 1 (2·v / J < 2^62 there); a negative one (never on a stop from a move) is left to the
     // bisection, whose condition then also bounds the velocity itself.
     if (0..1 << 60).contains(&velocity) && low <= high {
-        let deepest = -Trapezoidal::braking_velocity(i128::from(velocity), jerk);
+        // The unclamped form: the public one holds its deceleration to the 8.24 rates (≥ 2^8),
+        // and a jerk may be one raw unit.
+        let deepest = -Trapezoidal::braking(i128::from(velocity), jerk);
         return low.max(deepest.min(high));
     }
     bisect_stopping_acceleration(acceleration, velocity, limits)

@@ -159,6 +159,12 @@ impl Run {
     };
 }
 
+/// The smallest non-zero 8.24 rate as I32F32 bits (1 << 8): the least deceleration a validated
+/// profile has.
+const MIN_DECELERATION: i64 = 1 << 8;
+/// Above the largest 8.24 rate as I32F32 bits ((2^31 − 1) << 8 < 2^39).
+const MAX_DECELERATION: i64 = 1 << 40;
+
 /// The slots of [`Trapezoidal::runs`]: a plan has at most eight runs (moving away from the
 /// destination and the cycle that turns, then accelerate, cruise, brake, bump, rest; or the five
 /// of a `landing` plan and rest), and slot [`ELSEWHERE`] stands for the phases that are not a
@@ -246,7 +252,7 @@ impl Layout {
 /// assert_eq!((last.position, last.velocity), (1_000.into(), 0.into()));
 /// # Ok::<(), profilegen::Error>(())
 /// ```
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Trapezoidal {
     // The per-cycle fields first.
     /// The run under way: an index into `runs` (always below [`RUNS`]).
@@ -527,7 +533,24 @@ impl Trapezoidal {
     /// round down: `v = ⌊(distance + D·q(q + 1)/2) / (q + 1)⌋`. Any distance left over,
     /// `distance − T(v) < q + 1` units of 2^-32 counts, is absorbed on later cycles, because the
     /// velocity can take any 2^-32 value: the axis lands exactly.
+    ///
+    /// Defined for every input (it never panics): a deceleration outside 2^8 … 2^40 (the 8.24
+    /// rates, 2^8 … 2^39, with room) counts as the nearer end, and a distance beyond 2^64 − 1
+    /// (farther than any two positions of the 32-bit register) as 2^64 − 1. (Found by the audit
+    /// of issue #17: a zero or negative deceleration divided by zero or overflowed, and one
+    /// near 2^63 made a velocity past `i64`.)
     pub fn braking_velocity(distance: i128, deceleration: i64) -> i64 {
+        Self::braking(
+            distance.min(i128::from(u64::MAX)),
+            deceleration.clamp(MIN_DECELERATION, MAX_DECELERATION),
+        )
+    }
+
+    /// [`Self::braking_velocity`] within its domain: `distance` < 2^64, `deceleration` within
+    /// 1 … 2^40 (the generator's own calls, on every plan: a validated rate and a position
+    /// difference; and the S-curve's smooth stop, one derivative up, with its jerk of 1 raw unit
+    /// and more and a velocity below 2^60), so the velocity is below √(2·2^40·2^64) + 2^40 < 2^53.
+    pub(crate) fn braking(distance: i128, deceleration: i64) -> i64 {
         if distance <= 0 {
             return 0;
         }
@@ -576,7 +599,7 @@ impl Trapezoidal {
             if slowed <= 0 {
                 return slowed;
             }
-            let braking = Self::braking_velocity(distance, deceleration);
+            let braking = Self::braking(distance, deceleration);
             return slowed.min(acceleration).min(max_velocity).min(braking);
         }
         let upper = if velocity > max_velocity {
@@ -592,7 +615,7 @@ impl Trapezoidal {
         // is at least velocity − D (the previous cycle checked T(velocity) ≤ distance before it);
         // after a change of destination or D it may not be, and then the axis slows by D and
         // overshoots as little as it can.
-        Self::braking_velocity(distance, deceleration).max(velocity - deceleration)
+        Self::braking(distance, deceleration).max(velocity - deceleration)
     }
 
     /// The signed distance to go and the direction mask of the frame where it lies ahead
@@ -876,7 +899,7 @@ impl Trapezoidal {
             velocity_of(cycles)
         };
         let left = distance - covered(cycles);
-        let braking = Self::braking_velocity(left, deceleration);
+        let braking = Self::braking(left, deceleration);
         let accelerate = ahead(base + acceleration, acceleration, cycles.min(rising));
         let cruise = ahead(max_velocity, 0, cycles - cycles.min(rising));
         if braking < last - deceleration {
