@@ -30,10 +30,12 @@
 //! Planning takes a bounded number of integer operations, the same on every target (no floating
 //! point): at most eight shapes, each solved in closed form, a fixed number of notch-pair
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
-//! checked). Measured (see the README for the commands): 9,737 Cortex-M4 instructions median,
-//! 18,957 at worst over the first 1,000 random moves (25,622 over 5,000: moves of one to a few
+//! checked). Measured (see the README for the commands): 9,751 Cortex-M4 instructions median,
+//! 18,781 at worst over the first 1,000 random moves (22,982 over 5,000: moves of one to a few
 //! raw units of jerk, whose few units leave the whole remainder to the notch pairs); on the x86
-//! development machine a few hundred nanoseconds median, under about 2 µs at worst. A step is at
+//! development machine a few hundred nanoseconds median, under about 2 µs at worst. Moves the
+//! shapes near the optimum cannot finish (mostly from fractional positions with a jerk of a few
+//! raw units) try up to 24 more pairs of ramps around it first, which costs more. A step is at
 //! most 40 Cortex-M4 instructions.
 
 mod division;
