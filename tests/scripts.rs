@@ -105,3 +105,14 @@ fn scripted_microstep() {
         s.run(budget)
     });
 }
+
+#[test]
+fn scripted_mcx514_scurve() {
+    let budget = script::cycle_budget();
+    scripts(
+        "mcx514 S-curve",
+        12_000,
+        script::mcx514_scurve::script(),
+        |s| s.run(budget),
+    );
+}

@@ -70,6 +70,12 @@ impl Ramp {
         if up <= gap && up_tail <= gap - up {
             return (up, up_tail);
         }
+        if rate == 0 {
+            // From rest a step of min(J, cap) overshoots: the gap itself (0 ≤ gap < min(J, cap),
+            // its tail 0) lands at once; staying at 0 would never close it (a smooth stop that
+            // never stopped, a speed that never reached DV).
+            return (gap.max(0), 0);
+        }
         if rate <= gap && tail <= gap - rate {
             return (rate, tail);
         }

@@ -44,6 +44,7 @@
 
 pub mod interpolation;
 pub mod mcx514;
+pub mod mcx514_scurve;
 pub mod microstep;
 pub mod scurve;
 pub mod trapezoidal;
