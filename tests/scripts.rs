@@ -116,3 +116,11 @@ fn scripted_mcx514_scurve() {
         |s| s.run(budget),
     );
 }
+
+#[test]
+fn scripted_gearing() {
+    let budget = script::cycle_budget();
+    scripts("gearing", 8_000, script::gearing::script(), |s| {
+        s.run(budget)
+    });
+}
