@@ -124,3 +124,14 @@ fn scripted_gearing() {
         s.run(budget)
     });
 }
+
+#[test]
+fn scripted_circular_interpolation() {
+    let budget = script::cycle_budget();
+    scripts(
+        "circular interpolation",
+        8_000,
+        script::circular::script(),
+        |s| s.run(budget),
+    );
+}

@@ -1,5 +1,5 @@
-//! Raw bytes decoded into a gearing script (`tests/script/gearing.rs`) and run with every
-//! check of the scripted tests as an assertion.
+//! Raw bytes decoded into a gearing script (`tests/script/gearing.rs`) and run with every check of
+//! the scripted tests as an assertion.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;

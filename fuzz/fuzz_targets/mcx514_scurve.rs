@@ -1,5 +1,5 @@
-//! Raw bytes decoded into a MCX514 S-curve script (`tests/script/mcx514_scurve.rs`) and run with every
-//! check of the scripted tests as an assertion.
+//! Raw bytes decoded into a MCX514 S-curve script (`tests/script/mcx514_scurve.rs`) and run with
+//! every check of the scripted tests as an assertion.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;

@@ -42,6 +42,7 @@
 //!   [`Scripted::check_settled`]).
 #![allow(dead_code)] // each test and fuzz target uses its own generator
 
+pub mod circular;
 pub mod gearing;
 pub mod interpolation;
 pub mod mcx514;
