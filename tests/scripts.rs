@@ -135,3 +135,14 @@ fn scripted_circular_interpolation() {
         |s| s.run(budget),
     );
 }
+
+#[test]
+fn scripted_continuous_interpolation() {
+    let budget = script::cycle_budget();
+    scripts(
+        "continuous interpolation",
+        6_000,
+        script::continuous::script(),
+        |s| s.run(budget),
+    );
+}

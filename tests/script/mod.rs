@@ -43,6 +43,7 @@
 #![allow(dead_code)] // each test and fuzz target uses its own generator
 
 pub mod circular;
+pub mod continuous;
 pub mod gearing;
 pub mod interpolation;
 pub mod mcx514;
