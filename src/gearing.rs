@@ -61,7 +61,7 @@ enum Mode {
 /// assert_eq!((state.position, state.velocity), (I32F32::from_num(-14), I32F32::from_num(4.5)));
 /// # Ok::<(), profilegen::Error>(())
 /// ```
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ElectronicGear {
     state: State,
     /// The ratio in force, raw (1/2^16).
@@ -257,7 +257,7 @@ fn count(state: State) -> i32 {
 /// assert_eq!(axis.state().position, I32F32::from_bits((-746_455 * 1_000) << 16));
 /// # Ok::<(), profilegen::Error>(())
 /// ```
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Follower<M> {
     master: M,
     gear: ElectronicGear,

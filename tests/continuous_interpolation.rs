@@ -236,3 +236,42 @@ fn a_stop_abandons_the_queue() {
         }
     }
 }
+
+/// Found by the scripts (issue #17): a smooth stop with the position a fraction past the end of
+/// the segment being driven (its step still the end's) could not make that end the finish point
+/// and kept the old one, in the abandoned segments: the run went on past the segment, the axes
+/// held at its end. Now the end has come first: the stop is at once.
+#[test]
+fn a_smooth_stop_a_fraction_past_the_segments_end_stops_there() {
+    // SV 0.3 pulse/cycle, AC = DC 0.5 (1 ms): velocities 0.3, 0.8, 1.3, 1.8, positions 0.3,
+    // 1.1, 2.4, 4.2 (step 4, the first line's end). The old smooth stop went on at 1.3 to 5.5.
+    let mut run = ContinuousInterpolation::new(
+        ContinuousDriving {
+            initial_speed: InitialSpeed::from_bits(300).unwrap(),
+            drive_speed: DriveSpeed::from_bits(20_000).unwrap(),
+            acceleration: Acceleration::from_bits(500_000).unwrap(),
+            deceleration: Deceleration::from_bits(500_000).unwrap(),
+        },
+        CycleTime::from_seconds(1e-3).unwrap(),
+    )
+    .unwrap();
+    run.push(Segment::Line(Line::from_pulses([4, 0]).unwrap()))
+        .unwrap();
+    run.push(Segment::Line(Line::from_pulses([0, 1_000]).unwrap()))
+        .unwrap();
+    for _ in 0..3 {
+        run.step();
+    }
+    let state = run.step();
+    assert_eq!((state.step, state.segment, state.axes), (4, 0, [4, 0]));
+    assert!(state.driving.position > 4);
+    run.stop(StopKind::Smooth);
+    let mut cycles = 0;
+    while !run.is_complete() {
+        let state = run.step();
+        assert_eq!((state.step, state.segment, state.axes), (4, 0, [4, 0]));
+        cycles += 1;
+        assert!(cycles < 100, "the run went on: {state:?}");
+    }
+    assert_eq!(run.state().driving.velocity, 0);
+}

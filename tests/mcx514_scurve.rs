@@ -300,3 +300,40 @@ fn the_largest_manual_point_is_never_reached() {
     assert_eq!(v, [1, 2, 4, 6, 8, 9, 10, 10, 10, 10, 10, 10, 10, 0]);
     assert!(exempt);
 }
+
+/// A gap (DV − SV, or the excess over SV when slowing) below one cycle's jerk: the rate steps to
+/// the gap itself. Found by the scripts (issue #17): with the rate at zero the ramp only offered
+/// +J (too much) or staying, so the speed never reached DV and a smooth stop never ended.
+#[test]
+fn a_gap_below_one_jerk_step_is_closed_in_one_cycle() {
+    // SV 1 pulse/cycle, DV 1.5, AC 2, JK = DJ 1 (1 ms). By hand: SV on the first cycle; the gap
+    // 0.5 < J: rate 0.5, DV on the second (2.5 pulses output: the automatic trigger is
+    // 100 − 2.5 = 97.5); cruise to 98.5 (65 cycles at 1.5 from 1), then the excess 0.5 in one
+    // cycle (1, at 99.5) and the last 0.5 pulse, cut.
+    let mut registers = parameters(100, DecelerationMode::Automatic);
+    registers.trapezoid.drive_speed = DriveSpeed::from_bits(1_500).unwrap();
+    let mut axis = Mcx514SCurve::new(registers, millisecond()).unwrap();
+    let mut checker = Checker::new(&axis);
+    let mut v = Vec::new();
+    while !axis.is_complete() && v.len() < 1_000 {
+        v.push(checker.step(&mut axis).unwrap().velocity.to_num::<f64>());
+    }
+    let mut expected = vec![1.0];
+    expected.extend([1.5; 65]);
+    expected.extend([1.0, 0.5, 0.0]);
+    assert_eq!(v, expected);
+    assert_eq!(axis.state().position, 100);
+
+    // A smooth stop in the cruise: down to SV in one cycle, then the stop.
+    let mut axis = Mcx514SCurve::new(registers, millisecond()).unwrap();
+    let mut checker = Checker::new(&axis);
+    for _ in 0..10 {
+        checker.step(&mut axis).unwrap();
+    }
+    axis.stop(StopKind::Smooth);
+    let mut v = Vec::new();
+    while !axis.is_complete() && v.len() < 1_000 {
+        v.push(checker.step(&mut axis).unwrap().velocity.to_num::<f64>());
+    }
+    assert_eq!(v, [1.0, 0.0]);
+}

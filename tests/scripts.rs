@@ -105,3 +105,44 @@ fn scripted_microstep() {
         s.run(budget)
     });
 }
+
+#[test]
+fn scripted_mcx514_scurve() {
+    let budget = script::cycle_budget();
+    scripts(
+        "mcx514 S-curve",
+        12_000,
+        script::mcx514_scurve::script(),
+        |s| s.run(budget),
+    );
+}
+
+#[test]
+fn scripted_gearing() {
+    let budget = script::cycle_budget();
+    scripts("gearing", 8_000, script::gearing::script(), |s| {
+        s.run(budget)
+    });
+}
+
+#[test]
+fn scripted_circular_interpolation() {
+    let budget = script::cycle_budget();
+    scripts(
+        "circular interpolation",
+        8_000,
+        script::circular::script(),
+        |s| s.run(budget),
+    );
+}
+
+#[test]
+fn scripted_continuous_interpolation() {
+    let budget = script::cycle_budget();
+    scripts(
+        "continuous interpolation",
+        6_000,
+        script::continuous::script(),
+        |s| s.run(budget),
+    );
+}

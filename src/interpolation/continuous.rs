@@ -143,7 +143,7 @@ pub struct ContinuousState {
 /// The trapezoid's finish point is the end of the last segment queued so far: if the queue runs
 /// dry before a last segment ([`Self::push_last`]) arrives, the move stops at the end of what it
 /// has, at speed (as the chip does at a late finish point, exempt from the rate limits).
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ContinuousInterpolation {
     profile: Mcx514Trapezoidal,
     /// The waiting segments, a ring: `queue[(head + i) % CAPACITY]` for i < `waiting`.
@@ -377,7 +377,8 @@ impl ContinuousInterpolation {
 
     /// Stops the run (SPEC §9) and abandons the waiting segments: a smooth stop decelerates
     /// along the segment being driven, whose end becomes the finish point (if it comes first,
-    /// the run stops there at once, as at a late finish point); an abrupt stop holds in place.
+    /// the run stops there at once, as at a late finish point; if the position is already a
+    /// fraction past it, the stop is abrupt); an abrupt stop holds in place.
     /// Nothing can be queued afterwards.
     pub fn stop(&mut self, kind: StopKind) {
         let end_of_current = match &self.current {
@@ -390,8 +391,15 @@ impl ContinuousInterpolation {
         self.queued_steps = end_of_current;
         // Below the previous finish point, within 2³⁰: exact. A finish already behind the
         // position (the run has ended) is refused and changes nothing.
-        let _ = self.profile.continue_to(end_of_current as u32, None);
+        let moved_on = self.profile.continue_to(end_of_current as u32, None);
+        // The position already a fraction past the segment's end (its step still the end's): the
+        // end cannot be the finish point any more, and the old one lies in the abandoned
+        // segments. The end came first: stop at once, within the segment's last step.
+        let passed = !moved_on
+            && !self.stopped
+            && self.profile.state().position.to_bits() > (end_of_current as i64) << 32;
         self.stopped = true;
-        self.profile.stop(kind);
+        self.profile
+            .stop(if passed { StopKind::Abrupt } else { kind });
     }
 }

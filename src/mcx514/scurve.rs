@@ -34,6 +34,9 @@ struct Ramp {
     cap_less_jerk: i64,
     /// [`Ramp::tail`] of the cap, saturated at `i64::MAX` (then never affordable).
     cap_tail: i64,
+    /// min(jerk, cap): the rate a ramp from zero steps to first. A gap below it is closed in one
+    /// cycle by [`Mcx514SCurve::land`] ([`Ramp::next`] would stay at zero for ever).
+    first: i64,
 }
 
 impl Ramp {
@@ -208,6 +211,7 @@ impl Mcx514SCurve {
                 cap,
                 cap_less_jerk: cap - jerk,
                 cap_tail: Ramp::tail(cap, jerk),
+                first: jerk.min(cap),
             }
         };
         let speed_up = ramp(
@@ -255,8 +259,10 @@ impl Mcx514SCurve {
         match self.phase {
             Phase::Accelerating => {
                 let gap = self.drive - velocity;
-                if gap == 0 && self.rate == 0 {
-                    return velocity; // cruising at DV: what the ramp would choose, sooner
+                if gap < self.speed_up.first && self.rate == 0 {
+                    // Cruising at DV (gap 0): what the ramp would choose, sooner; else the
+                    // gap in one cycle.
+                    return self.land(position, velocity, gap.max(0));
                 }
                 (self.rate, self.tail) = self.speed_up.next(self.rate, self.tail, gap);
                 if self.rate == gap && gap != 0 {
@@ -275,8 +281,10 @@ impl Mcx514SCurve {
                 }
                 // Excess over SV ≥ 0: the slow-down never goes below SV.
                 let excess = velocity - initial;
-                if excess == 0 && self.rate == 0 {
-                    return velocity; // creeping at SV: what the ramp would choose, sooner
+                if excess < self.slow_down.first && self.rate == 0 {
+                    // Creeping at SV (excess 0): what the ramp would choose, sooner; else the
+                    // excess in one cycle.
+                    return self.land(position, velocity, -excess.max(0));
                 }
                 (self.rate, self.tail) = self.slow_down.next(self.rate, self.tail, excess);
                 velocity - self.rate
@@ -309,6 +317,23 @@ impl Mcx514SCurve {
             self.phase = Phase::Easing;
         }
         self.initial
+    }
+
+    /// The rate at zero and the speed `change` (raw I32F32 per cycle; |change| below the ramp's
+    /// first step) from its target (DV speeding up, SV slowing down): there at once, the rate
+    /// the change itself (within the jerk and the cap from zero, and back to zero on the next
+    /// cycle). The ramp's own choice from zero would be to stay (+J overshoots): the speed would
+    /// never reach DV, and a smooth stop that had to come down to SV would never end.
+    #[cold]
+    fn land(&mut self, position: i64, velocity: i64, change: i64) -> i64 {
+        if change == 0 {
+            return velocity;
+        }
+        (self.rate, self.tail) = (change.abs(), 0);
+        if change > 0 {
+            self.at_drive_speed(position + change + velocity);
+        }
+        velocity + change
     }
 
     /// At DV after a cycle that ended at `reached` (raw I32F32 pulses).

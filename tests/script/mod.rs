@@ -8,7 +8,7 @@
 //! tests in `tests/scripts.rs`) and a decoder from raw bytes (the cargo-fuzz targets in `fuzz/`,
 //! which include this module by path).
 //!
-//! Adding a generator (an MCX514 S-curve, a circular or continuous interpolation, gearing):
+//! Adding a generator (e.g. the bit-pattern interpolation, an encoder follower):
 //! 1. `tests/script/<name>.rs`: a `Command` enum in raw register bits (destinations as a
 //!    `Target` relative to the live position, as `trapezoidal.rs` does), `impl Scripted` for the
 //!    generator (`apply`; `settle_bound` from `profilegen::reference`; `velocity_register`; the
@@ -23,8 +23,8 @@
 //!
 //! A generator that takes no command but stops uses [`NoCommand`] and [`plain_steps`]
 //! (`mcx514.rs`); one that drives a geometry or a waveform wraps its driver and delegates
-//! (`interpolation.rs`, `microstep.rs`), so the driver's whole command surface runs through it
-//! (a gear would wrap its master the same way); prediction (`state_at`) is
+//! (`interpolation.rs`, `circular.rs`, `microstep.rs`), so the driver's whole command surface runs
+//! through it (`gearing.rs` wraps its master the same way); prediction (`state_at`) is
 //! [`Scripted::predict`], checked against stepping on every run of cycles.
 //!
 //! The checks, for every step of every script ([`run`]):
@@ -42,8 +42,12 @@
 //!   [`Scripted::check_settled`]).
 #![allow(dead_code)] // each test and fuzz target uses its own generator
 
+pub mod circular;
+pub mod continuous;
+pub mod gearing;
 pub mod interpolation;
 pub mod mcx514;
+pub mod mcx514_scurve;
 pub mod microstep;
 pub mod scurve;
 pub mod trapezoidal;

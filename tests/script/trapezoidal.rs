@@ -57,7 +57,8 @@ pub enum Command {
 }
 
 impl Command {
-    fn decode(bytes: &mut Bytes) -> Self {
+    /// Decodes a command from raw bytes (the fuzz targets).
+    pub fn decode(bytes: &mut Bytes) -> Self {
         let velocity = |bytes: &mut Bytes| {
             bytes
                 .boosted_signed(1 << 31)

@@ -1,0 +1,15 @@
+//! Raw bytes decoded into a MCX514 S-curve script (`tests/script/mcx514_scurve.rs`) and run with
+//! every check of the scripted tests as an assertion.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+
+#[path = "../../tests/script/mod.rs"]
+mod script;
+
+fuzz_target!(|data: &[u8]| {
+    let script = script::mcx514_scurve::Script::decode(&mut script::Bytes::new(data));
+    if let Err(error) = script.run(script::FUZZ_CYCLES) {
+        panic!("{error}\n{script:?}");
+    }
+});

@@ -1,0 +1,301 @@
+//! Electronic gearing (SPEC §14) scripts: a `Follower` geared to a scripted trapezoidal master
+//! (its whole command surface, stops included, runs in motion), with ratio changes in motion
+//! (re-anchoring), deceleration changes (zero refused) and both stops of the follower. Every
+//! cycle, while engaged: slave = anchor + ratio · (master travel since the anchor), exactly
+//! (i128, modulo the position register's 2⁶⁴ raw wrap), the travel the sum of the master's
+//! count changes.
+
+use fixed::types::I32F32;
+use profilegen::format::mc1451a::{GearRatio, TrapezoidalAcceleration};
+use profilegen::gearing::Follower;
+use profilegen::{Error, Limits, ProfileGenerator, State, StopKind, Trapezoidal};
+
+use super::{counts, trapezoidal, Bytes, Scripted, Step};
+
+/// A command to the geared pair.
+#[derive(Debug, Clone)]
+pub enum Command {
+    /// To the master.
+    Master(trapezoidal::Command),
+    /// A stop of the master (the follower follows it down).
+    MasterStop(StopKind),
+    /// A new ratio (raw 1/2^16): re-anchors and re-engages.
+    Ratio(i32),
+    /// A new smooth-stop deceleration (raw 16.16; zero refused).
+    Deceleration(u32),
+}
+
+/// The follower, and the test's own account of the gear: what it should be engaged to.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Geared {
+    follower: Follower<Trapezoidal>,
+    /// Engaged (by the test's account of SPEC §14: from the start and after a ratio change, until
+    /// a stop), with the anchor (slave position bits), the ratio (raw) and the master's travel
+    /// since the anchor (counts, unbounded).
+    engaged: bool,
+    anchor: i64,
+    ratio: i64,
+    travel: i128,
+    /// An abrupt stop not yet stepped (a ratio change then does not re-engage).
+    abrupt_pending: bool,
+    /// The master's state before the last cycle (for its own checks).
+    master_previous: State,
+    /// The master was stopped since its last accepted command.
+    master_stopped: bool,
+}
+
+/// The count a position register shows (the floor).
+fn count(state: State) -> i32 {
+    (state.position.to_bits() >> 32) as i32
+}
+
+impl Geared {
+    fn new(master: Trapezoidal, ratio: i32, slave: I32F32, deceleration: u32) -> Option<Self> {
+        let ratio_register = GearRatio::from_bits(ratio).ok()?;
+        let deceleration = TrapezoidalAcceleration::from_bits(deceleration).ok()?;
+        let master_previous = master.state();
+        let follower = match Follower::new(master, ratio_register, slave, deceleration) {
+            Ok(follower) => follower,
+            Err(_) => return None, // zero deceleration: refused, as documented
+        };
+        Some(Self {
+            follower,
+            engaged: true,
+            anchor: slave.to_bits(),
+            ratio: i64::from(ratio),
+            travel: 0,
+            abrupt_pending: false,
+            master_previous,
+            master_stopped: false,
+        })
+    }
+}
+
+impl ProfileGenerator for Geared {
+    fn step(&mut self) -> State {
+        let before = count(self.follower.master().state());
+        self.master_previous = self.follower.master().state();
+        let state = self.follower.step();
+        let after = count(self.follower.master().state());
+        // The master moves less than 2^31 counts a cycle: the change modulo 2^32, signed.
+        self.travel += i128::from(after.wrapping_sub(before));
+        self.abrupt_pending = false;
+        state
+    }
+    fn state(&self) -> State {
+        self.follower.state()
+    }
+    fn is_complete(&self) -> bool {
+        self.follower.is_complete()
+    }
+    fn stop(&mut self, kind: StopKind) {
+        if self.engaged || !self.follower.is_complete() {
+            self.abrupt_pending |= kind == StopKind::Abrupt && !self.follower.is_complete();
+        }
+        self.engaged = false;
+        self.follower.stop(kind);
+    }
+    fn limits(&self) -> Limits {
+        self.follower.limits()
+    }
+}
+
+impl Scripted for Geared {
+    type Command = Command;
+
+    fn apply(&mut self, command: &Command) -> Result<(), Error> {
+        match *command {
+            Command::Master(command) => {
+                self.follower.master_mut().apply(&command)?;
+                self.master_stopped = false;
+            }
+            Command::MasterStop(kind) => {
+                self.follower.master_mut().stop(kind);
+                self.master_stopped = true;
+            }
+            Command::Ratio(bits) => {
+                let ratio = GearRatio::from_bits(bits)?;
+                self.follower.gear_mut().set_ratio(ratio);
+                if !self.abrupt_pending {
+                    self.engaged = true;
+                }
+                self.anchor = self.follower.state().position.to_bits();
+                self.ratio = i64::from(bits);
+                self.travel = 0;
+            }
+            Command::Deceleration(bits) => {
+                let deceleration = TrapezoidalAcceleration::from_bits(bits)?;
+                self.follower.gear_mut().set_deceleration(deceleration)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Engaged: the master's bound, and a cycle for the follower's last difference. Stopping:
+    /// the velocity over the deceleration.
+    fn settle_bound(&self, _stopped: bool) -> f64 {
+        if self.engaged {
+            return self.follower.master().settle_bound(self.master_stopped) + 2.0;
+        }
+        let limits = self.follower.limits();
+        let deceleration = limits.max_slow_down.map_or(f64::INFINITY, |d| d.to_num());
+        counts(self.state().velocity.to_bits()).abs() / deceleration + 3.0
+    }
+
+    /// Engaged: the master settled and the follower at rest; else complete.
+    fn settled(&self) -> bool {
+        if self.engaged {
+            self.follower.master().settled() && self.state().velocity == 0
+        } else {
+            self.is_complete()
+        }
+    }
+
+    fn velocity_register(&self) -> Option<i64> {
+        None
+    }
+
+    fn check_cycle(&self, previous: &State, commanded: bool) -> Result<(), String> {
+        let master = self.follower.master();
+        master.check_cycle(&self.master_previous, commanded)?;
+        if self.engaged != self.follower.gear().is_engaged() {
+            return Err(format!(
+                "engaged {}, expected {}",
+                self.follower.gear().is_engaged(),
+                self.engaged
+            ));
+        }
+        let slave = self.state().position.to_bits();
+        if self.engaged {
+            // anchor + ratio · travel, the ratio's 16 fractional bits to I32F32's 32, modulo
+            // 2^64 raw units (the register's wrap).
+            let expected =
+                i128::from(self.anchor) + i128::from(self.ratio) * self.travel * (1 << 16);
+            if expected.rem_euclid(1 << 64) != i128::from(slave as u64) {
+                return Err(format!(
+                    "slave {slave} (bits), expected {expected} mod 2^64: anchor {}, ratio {}, \
+                     travel {}",
+                    self.anchor, self.ratio, self.travel
+                ));
+            }
+        } else if !commanded {
+            // Disengaged: never speeding up, toward zero.
+            let (before, after) = (previous.velocity.to_bits(), self.state().velocity.to_bits());
+            if after.abs() > before.abs() || after.signum() * before.signum() < 0 {
+                return Err(format!("stopping from {before} sped up to {after} (bits)"));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The master's script and the gear's.
+#[derive(Debug, Clone)]
+pub struct Script {
+    /// The master.
+    pub master: trapezoidal::Script,
+    /// Ratio (raw), the slave's start, the deceleration (raw).
+    pub gear: (i32, I32F32, u32),
+    /// The steps.
+    pub steps: Vec<Step<Command>>,
+}
+
+impl Script {
+    /// Builds the pair and runs the script.
+    ///
+    /// # Errors
+    /// The first check that failed.
+    pub fn run(&self, budget: u64) -> Result<u64, String> {
+        let Some(master) = self.master.build()? else {
+            return Ok(0);
+        };
+        let (ratio, slave, deceleration) = self.gear;
+        match Geared::new(master, ratio, slave, deceleration) {
+            Some(geared) => super::run(geared, &self.steps, budget),
+            None if deceleration == 0 => Ok(0),
+            None => Err("valid gear registers refused".into()),
+        }
+    }
+
+    /// Decodes a script from raw bytes (the fuzz target).
+    pub fn decode(bytes: &mut Bytes) -> Self {
+        let master = trapezoidal::Script::decode(bytes);
+        let ratio = bytes
+            .boosted_signed(1 << 30)
+            .clamp(-(1 << 30), (1 << 30) - 1) as i32;
+        let slave = bytes.position();
+        let deceleration = bytes.boosted(TrapezoidalAcceleration::MAX_BITS.into()) as u32;
+        let steps = bytes.steps(|bytes| {
+            Some(match bytes.byte() % 6 {
+                0 | 1 => Command::Master(trapezoidal::Command::decode(bytes)),
+                2 => Command::MasterStop(if bytes.byte() & 1 == 0 {
+                    StopKind::Smooth
+                } else {
+                    StopKind::Abrupt
+                }),
+                3 | 4 => Command::Ratio(
+                    bytes
+                        .boosted_signed(1 << 30)
+                        .clamp(-(1 << 30), (1 << 30) - 1) as i32,
+                ),
+                _ => Command::Deceleration(
+                    bytes.boosted(TrapezoidalAcceleration::MAX_BITS.into()) as u32
+                ),
+            })
+        });
+        Self {
+            master,
+            gear: (ratio, slave, deceleration),
+            steps,
+        }
+    }
+}
+
+/// The proptest strategy: the master's own script, its commands and stops given to the master
+/// or (stops) to the follower, with ratio and deceleration changes mixed in.
+#[cfg(test)]
+pub fn script() -> impl proptest::strategy::Strategy<Value = Script> {
+    use super::{boosted, boosted_signed, position};
+    use proptest::prelude::*;
+    let ratio =
+        || boosted_signed(1 << 30).prop_map(|bits| bits.clamp(-(1 << 30), (1 << 30) - 1) as i32);
+    let deceleration =
+        || boosted(0, TrapezoidalAcceleration::MAX_BITS.into()).prop_map(|bits| bits as u32);
+    let gear_command = prop_oneof![
+        3 => ratio().prop_map(Command::Ratio),
+        1 => deceleration().prop_map(Command::Deceleration),
+    ];
+    (
+        trapezoidal::script(),
+        (ratio(), position(), deceleration()),
+        prop::collection::vec((any::<prop::sample::Index>(), gear_command), 0..4),
+        prop::collection::vec(any::<bool>(), 12),
+    )
+        .prop_map(|(master, gear, inserts, to_master)| {
+            let mut steps: Vec<Step<Command>> = master
+                .steps
+                .iter()
+                .enumerate()
+                .map(|(i, step)| match step {
+                    Step::Run(k) => Step::Run(*k),
+                    Step::RunFraction(f) => Step::RunFraction(*f),
+                    Step::Command(c) => Step::Command(Command::Master(*c)),
+                    // A stop to the master half the time, else to the follower.
+                    Step::Stop(kind) if to_master[i % to_master.len()] => {
+                        Step::Command(Command::MasterStop(*kind))
+                    }
+                    Step::Stop(kind) => Step::Stop(*kind),
+                    Step::Finish => Step::Finish,
+                })
+                .collect();
+            for (at, command) in inserts {
+                let at = at.index(steps.len() + 1);
+                steps.insert(at, Step::Command(command));
+            }
+            Script {
+                master,
+                gear,
+                steps,
+            }
+        })
+}
