@@ -146,7 +146,8 @@ impl Timings {
 /// The same registers from a fractional position: after a stop an axis rests between counts, so
 /// a move's distance is any number of raw units (2^-32 counts), not a whole number of counts as
 /// from 0. The distance in raw units is log-uniform over 1 … 2^62 (its own stream per move), the
-/// destination the move's own. Durations only (not timed): counted against the same bound.
+/// destination the move's own. Durations only (not timed): counted against the same bound. With
+/// `PLANNING_LIST_OVER` set in the environment, every move over the bound is listed.
 fn fractional_starts(moves: &[Move]) {
     let mut over = Vec::with_capacity(moves.len());
     let mut refused = 0;
@@ -168,6 +169,14 @@ fn fractional_starts(moves: &[Move]) {
         let counts = magnitude as f64 / 4_294_967_296.0;
         let optimum = scurve_duration(counts, m.velocity, m.acceleration, m.jerk).max(1.0);
         let excess = axis.duration() as f64 - optimum;
+        if excess > WORST_OVER_OPTIMUM && std::env::var_os("PLANNING_LIST_OVER").is_some() {
+            println!(
+                "over ({excess:+.1}; {} cycles, optimum {optimum:.2}): {}, from {} raw units away",
+                axis.duration(),
+                m.describe(),
+                distance
+            );
+        }
         if worst.as_ref().is_none_or(|(w, _)| excess > *w) {
             worst = Some((
                 excess,

@@ -508,6 +508,55 @@ fn ramps_around_the_optimum_before_one_cycle_ramps() {
     }
 }
 
+/// A maximum velocity that the slowest ramps could not reach in whole raw units at the
+/// acceleration limit (V = 16 raw, A = 3 raw, J = 65,536 raw: the peak acceleration is 3J, and no
+/// mix of units with ramps (3, 6), (3, 5), (2, 6), (2, 5) at 3J meets 16·2^16 exactly) is met
+/// exactly all the same, from above with a velocity notch: the plan used to cruise one raw unit
+/// below V, which over 2^30 − 1 counts at V = 2^-12 counts/cycle costs 2^42/(2^28 − 1) ≈ 4.2
+/// million cycles. Now within 3 cycles of the continuous optimum, and the cruise is V itself.
+#[test]
+fn the_maximum_velocity_is_met_exactly_when_the_acceleration_limit_is_reached() {
+    let p = ScurveParameters {
+        destination: (1 << 30) - 1,
+        max_velocity: MaxVelocity::from_bits(16).unwrap(),
+        max_acceleration: ScurveAcceleration::from_bits(3).unwrap(),
+        jerk: Jerk::from_bits(65_536).unwrap(),
+    };
+    let plan = SCurve::new(p).unwrap().plan();
+    let best = optimum(&p, f64::from(p.destination));
+    assert!(
+        plan.total as f64 <= best + 3.0,
+        "{} cycles, optimum {best}",
+        plan.total
+    );
+    assert_eq!(plan.peak_velocity.to_bits(), 16 << 16);
+}
+
+/// Where one cycle of jerk and of acceleration reaches the maximum velocity (V ≤ min(J, A)), no
+/// move is shorter than ⌈D/V⌉ + 2 cycles (by hand: each moving cycle covers at most V, and after
+/// the last one the velocity and then the acceleration must come back to zero, a cycle each), and
+/// the plan takes exactly that — one cycle more only when two cycles of cruise would need a jerk
+/// of more than J. The example (move #9998 of the `planning` bench, from a fractional position)
+/// took 5 cycles where these 4 do.
+#[test]
+fn a_velocity_reached_in_one_cycle_moves_in_the_fewest_cycles() {
+    let p = ScurveParameters {
+        destination: -1_650_710,
+        max_velocity: MaxVelocity::from_bits(34).unwrap(),
+        max_acceleration: ScurveAcceleration::from_bits(4_031).unwrap(),
+        jerk: Jerk::from_bits(221_270_199).unwrap(),
+    };
+    let target = i64::from(p.destination) << 32;
+    let mut axis = SCurve::with_position(p, I32F32::from_bits(target - 2_359_611)).unwrap();
+    // ⌈2,359,611 / (34·2^16)⌉ + 2 = 2 + 2.
+    assert_eq!(axis.plan().total, 4);
+    let states = run_move(&mut axis).unwrap();
+    assert_eq!(
+        *states.last().unwrap(),
+        State::at_rest(I32F32::from_bits(target))
+    );
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(10_000))]
 
@@ -583,6 +632,47 @@ proptest! {
         let step = if negative { -offset } else { offset };
         prop_assert_eq!(states[0].velocity.to_bits(), step);
         prop_assert_eq!(*states.last().unwrap(), State::at_rest(I32F32::from_bits(target)));
+    }
+
+    /// V ≤ min(J, A) (see `a_velocity_reached_in_one_cycle_moves_in_the_fewest_cycles`), from
+    /// any position: the fewest cycles there are, by hand. Each moving cycle covers at most V and
+    /// two more bring the velocity and the acceleration back to zero: ⌈D/V⌉ + 2. One moving cycle
+    /// [D] jerks by −2D on the second; two, [⌈D/2⌉, ⌊D/2⌋] at best, by ⌈D/2⌉ + (D mod 2) on one
+    /// of theirs: where the jerk is short of that, one moving cycle more. Exact arrival.
+    #[test]
+    fn a_velocity_reached_in_one_cycle_moves_in_the_fewest_cycles_from_anywhere(
+        velocity in 1u16..(1 << 15),
+        acceleration_above in 0u16..(1 << 15),
+        jerk_above in 0u32..(1 << 20),
+        raw in 1u64..(1 << 34),
+        destination in -1_000i32..1_000,
+    ) {
+        let v = u64::from(velocity) << 16;
+        let acceleration = velocity.saturating_add(acceleration_above).min((1 << 15) - 1);
+        let jerk = (v + u64::from(jerk_above)).min((1 << 31) - 1) as u32;
+        prop_assume!(u64::from(jerk) >= v);
+        let p = ScurveParameters {
+            destination,
+            max_velocity: MaxVelocity::from_bits(u32::from(velocity)).unwrap(),
+            max_acceleration: ScurveAcceleration::from_bits(acceleration).unwrap(),
+            jerk: Jerk::from_bits(jerk).unwrap(),
+        };
+        let distance = raw % (64 * v) + 2;
+        let target = i64::from(destination) << 32;
+        let mut axis = SCurve::with_position(p, I32F32::from_bits(target - distance as i64)).unwrap();
+        let jerk = u64::from(jerk);
+        let moving = if distance <= v && 2 * distance <= jerk {
+            1
+        } else if distance <= 2 * v && distance.div_ceil(2) + distance % 2 <= jerk {
+            2
+        } else {
+            distance.div_ceil(v).max(3)
+        };
+        prop_assert_eq!(axis.plan().total, moving + 2);
+        if moving < 200 {
+            let states = run_move(&mut axis)?;
+            prop_assert_eq!(*states.last().unwrap(), State::at_rest(I32F32::from_bits(target)));
+        }
     }
 
     /// Plans over the whole register ranges, moves of any length (too long to step): within 3

@@ -229,7 +229,9 @@ fn plan_move(
         out.pulse(magnitude, direction);
         return Ok(direction);
     }
-    if search::search(magnitude, direction, limits, out) {
+    if search::at_velocity_in_one_cycle(magnitude, direction, limits, out)
+        || search::search(magnitude, direction, limits, out)
+    {
         Ok(direction)
     } else {
         Err(Error::Unreachable {

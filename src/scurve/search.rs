@@ -293,6 +293,28 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
     planned || around(&move_, out) || one_cycle_ramps(&move_, out)
 }
 
+/// Plans a move whose maximum velocity is reached in one cycle (`V ≤ min(J, A)`) into `out`:
+/// then ramps of one cycle ([`one_cycle_ramps`]) are the fastest plan there is. Every moving cycle
+/// is at most `V`, and coming to rest takes two cycles more (the velocity to 0, then the
+/// acceleration), so no plan is shorter than `⌈D/V⌉ + 2` cycles, which these ramps take (one
+/// more only when two cycles of cruise would jerk past the limit). `false` otherwise.
+pub(super) fn at_velocity_in_one_cycle(
+    distance: u64,
+    direction: i64,
+    limits: Limits64,
+    out: &mut Schedule,
+) -> bool {
+    limits.velocity <= limits.jerk.min(limits.acceleration)
+        && one_cycle_ramps(
+            &Move {
+                distance,
+                direction,
+                limits,
+            },
+            out,
+        )
+}
+
 /// A move this many cycles long or more has room for notch pairs wherever a shape fits.
 const SHORT_MOVE: u64 = 100;
 
@@ -548,14 +570,13 @@ const AROUND_TRIES: usize = 24;
 fn one_cycle_ramps(move_: &Move, out: &mut Schedule) -> bool {
     let (distance, limits) = (move_.distance, move_.limits);
     let most = limits.jerk.min(limits.acceleration).min(limits.velocity);
-    let mut c = distance.div_ceil(most).max(2);
-    if c == 2 && distance % 2 == 1 {
-        c = 3; // an early unit needs a cruise of its own (c − 1 ≥ 2)
-    }
-    for c in c..c + 2 {
+    let first = distance.div_ceil(most).max(2);
+    for c in first..first + 2 {
         let units = distance.div_ceil(c);
         let over = units * c - distance;
-        if over > units || (over > 0 && c < 3) {
+        // With c = 2 an early unit is tb(1, 1, 1), whose velocity of one cycle jerks by −2 on
+        // cycle 1, where every other unit jerks by −1: `units + over` in all.
+        if over > units || (c == 2 && units + over > limits.jerk) {
             continue;
         }
         let mix = Mix {

@@ -239,6 +239,11 @@ impl Mix {
     /// brought down by a velocity notch). `None` if the ramps are too long or too short for
     /// that velocity.
     ///
+    /// From above, when no split meets the velocity at the acceleration limit, the mix may stay
+    /// further above it (as many units of the shorter second ramp as fit): the velocity notch
+    /// takes the difference, where cruising from below would cost the distance over `V²` cycles
+    /// (four million cycles for 2^30 counts at 2^-12 counts/cycle, one raw unit under).
+    ///
     /// The acceleration fixes how many units have the shorter first ramp: `m = jerk·a − peak`
     /// (at most `jerk`, as `a` is at most one more than `acceleration / jerk`). The velocity is
     /// then `peak·b − L` where each unit given the shorter second ramp lowers it by its first
@@ -290,6 +295,12 @@ impl Mix {
                     div(lowering, b)
                 };
                 (below_limit && z <= long).then_some((0, 0, z))
+            })
+            .or_else(|| {
+                // From above, at the acceleration limit and with too few short units for the
+                // rest: as many units of a as fit, the rest left to the velocity notch.
+                let x = div(lowering, a).min(long_room);
+                (!under).then_some((x, 0, 0))
             })?;
         Some(Self {
             a,

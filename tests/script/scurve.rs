@@ -307,21 +307,6 @@ impl Scripted for SCurve {
             parameters.max_acceleration.to_f64(),
             parameters.jerk.to_f64(),
         );
-        // KNOWN (issue #17 note, left to the planner's issue #11): when the maximum velocity is
-        // not reachable in whole cycles of jerk and acceleration within Amax by the shapes the
-        // planner tries, it cruises one raw unit (2^-32 counts/cycle) below it, which costs
-        // distance·2^-32 / V² cycles: 2^22 cycles over 2^30 counts at V = 2^-12 (registers 16, 3,
-        // 65,536; V is reachable exactly: 2 cycles of +J, 6 at 2J, 2 of −J). Narrow exclusion:
-        // only that one raw unit's cost is allowed on top of the 4 cycles.
-        let velocity = parameters.max_velocity.to_f64();
-        let one_unit_low = self.plan().peak_velocity.to_bits()
-            == (i64::from(parameters.max_velocity.to_bits()) << 16) - 1;
-        let allowance = if one_unit_low {
-            let low = velocity - counts(1);
-            counts(distance).abs() * (1.0 / low - 1.0 / velocity) * 1.001
-        } else {
-            0.0
-        };
         let plan = self.plan();
         // KNOWN (issue #17 note, for the planner's issue #11): when no shape of the search fits,
         // the planner falls back to one-cycle ramps (`search::one_cycle_ramps`: phases
@@ -335,7 +320,7 @@ impl Scripted for SCurve {
         // with a large jerk) may take 5 cycles where 3 would do (one cycle of velocity, the
         // arrival, the cycle that zeroes the acceleration); the bound counts from one cycle.
         let floor = optimum.max(1.0);
-        if self.duration() as f64 > floor + 4.0 + allowance {
+        if self.duration() as f64 > floor + 4.0 {
             if one_cycle_ramps {
                 super::excluded();
                 return Ok(());
