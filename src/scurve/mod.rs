@@ -30,8 +30,8 @@
 //! Planning takes a bounded number of integer operations, the same on every target (no floating
 //! point): at most eight shapes, each solved in closed form, a fixed number of notch-pair
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
-//! checked). Measured (see the README for the commands): 9,751 Cortex-M4 instructions median,
-//! 18,781 at worst over the first 1,000 random moves (22,982 over 5,000: moves of one to a few
+//! checked). Measured (see the README for the commands): 9,749 Cortex-M4 instructions median,
+//! 18,790 at worst over the first 1,000 random moves (22,987 over 5,000: moves of one to a few
 //! raw units of jerk, whose few units leave the whole remainder to the notch pairs); on the x86
 //! development machine a few hundred nanoseconds median, under about 2 µs at worst. Moves the
 //! shapes near the optimum cannot finish (mostly from fractional positions with a jerk of a few
