@@ -55,33 +55,40 @@ impl Ramp {
         i64::try_from(sum).unwrap_or(i64::MAX)
     }
 
-    /// The next rate and its tail, from the present ones with `gap` of speed still to gain (or
-    /// shed): the largest of rate + J (capped), rate, rate − J whose rate plus tail fits the gap,
-    /// so the speed lands on its target with the rate at zero, every change within J. The
-    /// invariant (rate + tail ≤ gap after the previous choice) makes rate − J always fit; the
-    /// last resort, a rate ≤ J equal to the gap, lands exactly.
+    /// This cycle's speed change, from the ramp's rate and tail with `gap` of speed still to
+    /// gain (or shed), updating them: the largest of rate + J (capped) whose rate plus tail fits
+    /// the gap; else, with the slack (the gap less the tail) above rate − J, the slack itself
+    /// (at most the rate: the rate held), the ramp's rate kept so that rate − J follows; else
+    /// rate − J. So the rate stays within J of the last change, and the descent from the top
+    /// takes in one cycle what the tail leaves over (the slack is constant while the rate falls
+    /// by J, so it fits between two of its steps): the speed lands on its target with the rate
+    /// at zero, with no cycles crept at a rate below one jerk step.
     ///
-    /// No overflow: the rate and tail in hand were chosen with rate + tail ≤ the gap then
-    /// (< 2⁶³), so tail + rate is in range; a sum with the gap is compared as a difference.
+    /// Invariant: tail ≤ gap (the rate chosen last fitted the gap then). No overflow: the rate
+    /// and tail in hand were chosen with rate + tail ≤ the gap then (< 2⁶³), so tail + rate is
+    /// in range; a sum with the gap is compared as a difference.
     #[inline]
-    fn next(&self, rate: i64, tail: i64, gap: i64) -> (i64, i64) {
-        let (up, up_tail) = if rate >= self.cap_less_jerk {
+    fn next(&self, rate: &mut i64, tail: &mut i64, gap: i64) -> i64 {
+        let (up, up_tail) = if *rate >= self.cap_less_jerk {
             (self.cap, self.cap_tail)
         } else {
-            (rate + self.jerk, tail + rate)
+            (*rate + self.jerk, *tail + *rate)
         };
         if up <= gap && up_tail <= gap - up {
-            return (up, up_tail);
+            (*rate, *tail) = (up, up_tail);
+            return up;
         }
-        if rate <= gap && tail <= gap - rate {
-            return (rate, tail);
+        // ≥ 0 by the invariant; rate − J, held at zero (the last step from below J).
+        let slack = gap - *tail;
+        let down = (*rate - self.jerk).max(0);
+        if slack > down {
+            // Within [rate − J, rate]: the rate held (slack ≥ rate), or the slack once, after
+            // which the gap is the tail and the descent goes on from the rate.
+            return slack.min(*rate);
         }
-        let down = rate - self.jerk;
-        if down > 0 {
-            return (down, tail - down);
-        }
-        // rate ≤ J and its tail is 0, yet rate > gap: the gap itself (0 ≤ gap < rate ≤ J).
-        (gap.max(0), 0)
+        // S(r − J) = S(r) − (r − J); from r ≤ J both are 0.
+        (*rate, *tail) = (down, *tail - down);
+        down
     }
 }
 
@@ -105,7 +112,9 @@ enum Phase {
 ///
 /// Integer and division-free per cycle (I32F32 raw bits): each cycle takes the largest rate,
 /// within one jerk of the last, from which a ramp-down at the jerk still lands on the target
-/// speed (see `Ramp::next`); so the speed reaches DV (and SV) exactly, with the rate at zero.
+/// speed, and once the ramp-down has begun, the slack it leaves in one cycle between two of its
+/// steps (see `Ramp::next`); so the speed reaches DV (and SV) exactly, with the rate at zero,
+/// and no cycles creep at a rate below one jerk step.
 ///
 /// When deceleration starts, as for [`Mcx514Trapezoidal`]: **automatic** (AC = DC and JK = DJ)
 /// on the first cycle on which the pulses left are ≤ the pulses output while speeding up;
@@ -264,13 +273,13 @@ impl Mcx514SCurve {
                     // gap in one cycle.
                     return self.land(position, velocity, gap.max(0));
                 }
-                (self.rate, self.tail) = self.speed_up.next(self.rate, self.tail, gap);
-                if self.rate == gap && gap != 0 {
+                let change = self.speed_up.next(&mut self.rate, &mut self.tail, gap);
+                if change == gap && gap != 0 {
                     // At DV (or there this cycle): with automatic deceleration the trigger
                     // becomes the finish point less the pulses output while speeding up.
                     self.at_drive_speed(position + gap + velocity);
                 }
-                velocity + self.rate
+                velocity + change
             }
             Phase::Decelerating => {
                 let initial = self.initial;
@@ -286,8 +295,7 @@ impl Mcx514SCurve {
                     // excess in one cycle.
                     return self.land(position, velocity, -excess.max(0));
                 }
-                (self.rate, self.tail) = self.slow_down.next(self.rate, self.tail, excess);
-                velocity - self.rate
+                velocity - self.slow_down.next(&mut self.rate, &mut self.tail, excess)
             }
             Phase::Easing => self.ease(velocity),
             Phase::Start => self.start(),
