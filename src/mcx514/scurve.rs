@@ -97,12 +97,17 @@ impl Ramp {
 enum Phase {
     /// At rest before the first cycle.
     Start,
-    /// Speeding up toward DV (the rate ramps by JK within AC), then cruising at DV.
+    /// Speeding up toward DV (the rate ramps by JK within AC).
     Accelerating,
+    /// At DV with the rate at zero (until deceleration starts).
+    Cruising,
     /// Deceleration has started while the rate was still positive: it falls by JK to zero first.
     Easing,
-    /// Slowing down toward SV (the rate ramps by DJ within DC), then creeping at SV.
+    /// Slowing down toward SV (the rate ramps by DJ within DC).
     Decelerating,
+    /// At SV with the rate at zero, to the finish point (a smooth stop makes it
+    /// [`Phase::Decelerating`] again, which ends it).
+    Creeping,
 }
 
 /// The MCX514's S-curve acceleration/deceleration on the driving axis (SPEC §12.2), cycle by
@@ -259,46 +264,75 @@ impl Mcx514SCurve {
     }
 
     /// The velocity of the next cycle before the cut to the pulses left (raw I32F32), with the
-    /// phase it leaves the move in.
-    #[inline]
+    /// phase it leaves the move in. Inlined into [`step`](ProfileGenerator::step) with the two
+    /// ramps; the events (the start, the trigger, easing, landing) are calls off that path.
+    #[inline(always)]
     fn next_velocity(&mut self, position: i64, velocity: i64) -> i64 {
-        if self.phase == Phase::Accelerating && position >= self.trigger {
-            self.phase = Phase::Easing;
-        }
         match self.phase {
-            Phase::Accelerating => {
-                let gap = self.drive - velocity;
-                if gap < self.speed_up.first && self.rate == 0 {
-                    // Cruising at DV (gap 0): what the ramp would choose, sooner; else the
-                    // gap in one cycle.
-                    return self.land(position, velocity, gap.max(0));
-                }
-                let change = self.speed_up.next(&mut self.rate, &mut self.tail, gap);
-                if change == gap && gap != 0 {
-                    // At DV (or there this cycle): with automatic deceleration the trigger
-                    // becomes the finish point less the pulses output while speeding up.
-                    self.at_drive_speed(position + gap + velocity);
-                }
-                velocity + change
+            Phase::Cruising if position < self.trigger => velocity,
+            Phase::Creeping => velocity,
+            Phase::Accelerating if position < self.trigger => self.accelerate(position, velocity),
+            Phase::Decelerating => self.decelerate(position, velocity),
+            _ => self.event(position, velocity),
+        }
+    }
+
+    /// Speeding up toward DV, or cruising there.
+    #[inline(always)]
+    fn accelerate(&mut self, position: i64, velocity: i64) -> i64 {
+        let gap = self.drive - velocity;
+        if self.rate == 0 && gap < self.speed_up.first {
+            if gap <= 0 {
+                // At DV: cruise (what the ramp would choose, sooner).
+                self.phase = Phase::Cruising;
+                return velocity;
             }
-            Phase::Decelerating => {
-                let initial = self.initial;
-                if self.stopping && velocity <= initial {
-                    // A smooth stop ends at SV, as the chip's decelerating stop does.
-                    self.complete = true;
-                    return 0;
-                }
-                // Excess over SV ≥ 0: the slow-down never goes below SV.
-                let excess = velocity - initial;
-                if excess < self.slow_down.first && self.rate == 0 {
-                    // Creeping at SV (excess 0): what the ramp would choose, sooner; else the
-                    // excess in one cycle.
-                    return self.land(position, velocity, -excess.max(0));
-                }
-                velocity - self.slow_down.next(&mut self.rate, &mut self.tail, excess)
+            return self.land(position, velocity, gap);
+        }
+        let change = self.speed_up.next(&mut self.rate, &mut self.tail, gap);
+        // (Gap 0 with the rate still above zero: at DV already, the trigger set.)
+        if change == gap && gap != 0 {
+            // At DV this cycle: with automatic deceleration the trigger becomes the finish
+            // point less the pulses output while speeding up.
+            self.at_drive_speed(position + gap + velocity);
+        }
+        velocity + change
+    }
+
+    /// Slowing down toward SV, or creeping there; a smooth stop ends at SV.
+    #[inline(always)]
+    fn decelerate(&mut self, position: i64, velocity: i64) -> i64 {
+        let initial = self.initial;
+        if self.stopping && velocity <= initial {
+            // A smooth stop ends at SV, as the chip's decelerating stop does.
+            self.complete = true;
+            return 0;
+        }
+        // Excess over SV ≥ 0: the slow-down never goes below SV.
+        let excess = velocity - initial;
+        if self.rate == 0 && excess < self.slow_down.first {
+            if excess <= 0 {
+                // At SV: creep (what the ramp would choose, sooner).
+                self.phase = Phase::Creeping;
+                return velocity;
             }
-            Phase::Easing => self.ease(velocity),
+            return self.land(position, velocity, -excess);
+        }
+        velocity - self.slow_down.next(&mut self.rate, &mut self.tail, excess)
+    }
+
+    /// The first cycle, the trigger reached while speeding up or at DV, and easing.
+    #[cold]
+    #[inline(never)]
+    fn event(&mut self, position: i64, velocity: i64) -> i64 {
+        match self.phase {
             Phase::Start => self.start(),
+            Phase::Accelerating | Phase::Cruising | Phase::Easing => {
+                self.phase = Phase::Easing;
+                self.ease(position, velocity)
+            }
+            // Not reached (no event while slowing down or creeping); as on the path.
+            Phase::Decelerating | Phase::Creeping => self.decelerate(position, velocity),
         }
     }
 
@@ -333,10 +367,8 @@ impl Mcx514SCurve {
     /// cycle). The ramp's own choice from zero would be to stay (+J overshoots): the speed would
     /// never reach DV, and a smooth stop that had to come down to SV would never end.
     #[cold]
+    #[inline(never)]
     fn land(&mut self, position: i64, velocity: i64, change: i64) -> i64 {
-        if change == 0 {
-            return velocity;
-        }
         (self.rate, self.tail) = (change.abs(), 0);
         if change > 0 {
             self.at_drive_speed(position + change + velocity);
@@ -345,7 +377,7 @@ impl Mcx514SCurve {
     }
 
     /// At DV after a cycle that ended at `reached` (raw I32F32 pulses).
-    #[cold]
+    #[inline]
     fn at_drive_speed(&mut self, reached: i64) {
         if self.automatic {
             self.trigger = self.finish - reached;
@@ -354,8 +386,7 @@ impl Mcx514SCurve {
 
     /// Deceleration has started: a rate still rising the speed falls by JK to zero first (the
     /// speed-up's tail kept the speed within DV), then the slow-down begins.
-    #[cold]
-    fn ease(&mut self, velocity: i64) -> i64 {
+    fn ease(&mut self, position: i64, velocity: i64) -> i64 {
         if self.rate > 0 {
             let down = self.rate - self.speed_up.jerk;
             (self.rate, self.tail) = if down > 0 {
@@ -367,7 +398,7 @@ impl Mcx514SCurve {
         }
         self.phase = Phase::Decelerating;
         (self.rate, self.tail) = (0, 0);
-        self.next_velocity(i64::MIN, velocity)
+        self.decelerate(position, velocity)
     }
 }
 
@@ -405,9 +436,12 @@ impl ProfileGenerator for Mcx514SCurve {
         match kind {
             StopKind::Smooth => {
                 self.stopping = true;
-                if self.phase == Phase::Accelerating {
-                    self.phase = Phase::Easing;
-                }
+                self.phase = match self.phase {
+                    Phase::Accelerating | Phase::Cruising => Phase::Easing,
+                    // Creeping: SV reached, the stop ends it (`decelerate`).
+                    Phase::Creeping => Phase::Decelerating,
+                    phase => phase,
+                };
             }
             StopKind::Abrupt => self.complete = true,
         }
@@ -420,7 +454,7 @@ impl ProfileGenerator for Mcx514SCurve {
         // (from moving to rest).
         let exempt = (before == 0) != (velocity == 0) || velocity < self.wanted;
         let (jerk, max_acceleration) = match self.phase {
-            Phase::Decelerating => (self.slow_down.jerk, self.slow_down.cap),
+            Phase::Decelerating | Phase::Creeping => (self.slow_down.jerk, self.slow_down.cap),
             _ => (self.speed_up.jerk, self.speed_up.cap),
         };
         Limits {
