@@ -126,6 +126,17 @@ fn scripted_gearing() {
 }
 
 #[test]
+fn scripted_encoder_gearing() {
+    let budget = script::cycle_budget();
+    scripts(
+        "encoder gearing",
+        8_000,
+        script::encoder_gearing::script(),
+        |s| s.run(budget),
+    );
+}
+
+#[test]
 fn scripted_circular_interpolation() {
     let budget = script::cycle_budget();
     scripts(

@@ -44,6 +44,7 @@
 
 pub mod circular;
 pub mod continuous;
+pub mod encoder_gearing;
 pub mod gearing;
 pub mod interpolation;
 pub mod mcx514;
