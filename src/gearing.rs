@@ -18,6 +18,13 @@
 //! velocity and acceleration are the differences (SPEC §5); a ratio change re-anchors the
 //! formula at the present cycle, so the velocity jumps, as on the chip.
 //!
+//! The follower's speed is the ratio times the master's change in a cycle: it must stay below
+//! 2³⁰ counts per cycle (e.g. a master moving at most 2¹⁶ counts a cycle at the largest ratio,
+//! 16,384), so that its velocity and acceleration (a difference of two velocities) fit I32F32.
+//! Past that they wrap (the position stays exact modulo the register; the §5 acceleration
+//! identity no longer holds in plain arithmetic): no physical drive moves half its position
+//! register in one cycle, and the counts come in each cycle with no error to return.
+//!
 //! Stops disengage the gear: abrupt, velocity zero on the next cycle; smooth, the velocity falls
 //! to zero by the follower's deceleration per cycle (the crate's choice: the manuals are silent).
 
@@ -324,7 +331,7 @@ impl<M: ProfileGenerator> ProfileGenerator for Follower<M> {
 
 /// A follower geared to an encoder: each step takes the next count from `counts` (a master that
 /// runs out stands still).
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct EncoderFollower<I> {
     counts: I,
     gear: ElectronicGear,
@@ -350,6 +357,11 @@ impl<I: Iterator<Item = i32>> EncoderFollower<I> {
     /// The gear, to change its ratio or deceleration.
     pub fn gear_mut(&mut self) -> &mut ElectronicGear {
         &mut self.gear
+    }
+
+    /// The gear (its ratio, whether it is engaged).
+    pub fn gear(&self) -> &ElectronicGear {
+        &self.gear
     }
 }
 

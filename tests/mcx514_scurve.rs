@@ -12,6 +12,7 @@ use profilegen::format::mcx514::{
     ManualDecelerationPoint,
 };
 use profilegen::format::CycleTime;
+use profilegen::reference::scurve_duration;
 use profilegen::{
     DecelerationMode, Error, Mcx514Parameters, Mcx514SCurve, Mcx514ScurveParameters,
     ProfileGenerator, StopKind,
@@ -336,4 +337,175 @@ fn a_gap_below_one_jerk_step_is_closed_in_one_cycle() {
         v.push(checker.step(&mut axis).unwrap().velocity.to_num::<f64>());
     }
     assert_eq!(v, [1.0, 0.0]);
+}
+
+/// A 1/1024 s cycle, so that the registers below convert exactly (powers of two).
+fn cycle_1024() -> CycleTime {
+    CycleTime::from_seconds(1.0 / 1024.0).unwrap()
+}
+
+#[test]
+fn a_cap_between_two_jerk_steps_reaches_the_drive_speed_without_creeping() {
+    // At 1/1024 s: SV 1,024 pps = 1 pulse/cycle, DV 2,560 = 2.5, AC = DC 327,680 pps/s = 5/16
+    // pulse/cycle², JK = DJ 268,435,456 pps/s² = 1/4 pulse/cycle³: the cap is 1¼ jerk steps.
+    // Speed-up, gap 3/2: rate 1/4 (gap 5/4); the cap 5/16 (its ramp-down adds S(5/16) = 1/16,
+    // 5/16 + 1/16 ≤ 5/4; gap 15/16), 5/16 (5/8), 5/16 (5/16); now the cap no longer fits
+    // (3/8 > 5/16) and the slack over the tail, 5/16 − 1/16 = 1/4, lies between rate − J = 1/16
+    // and the rate: 1/4 in one cycle (gap 1/16 = the tail), then the tail's 1/16, at DV with
+    // the rate at zero: 6 cycles. (Choosing only rate ± J, the rate fell to 1/16 with 5/16 to
+    // go and crept there for 5 cycles.) The slow-down from the manual point mirrors it.
+    let point = ManualDecelerationPoint::from_bits(100).unwrap();
+    let parameters = Mcx514ScurveParameters {
+        trapezoid: Mcx514Parameters {
+            pulses: 200,
+            initial_speed: InitialSpeed::from_bits(1_024).unwrap(),
+            drive_speed: DriveSpeed::from_bits(2_560).unwrap(),
+            acceleration: Acceleration::from_bits(327_680).unwrap(),
+            deceleration: Deceleration::from_bits(327_680).unwrap(),
+            deceleration_mode: DecelerationMode::Manual(point),
+        },
+        jerk: Jerk::from_bits(268_435_456).unwrap(),
+        deceleration_jerk: DecelerationJerk::from_bits(268_435_456).unwrap(),
+    };
+    let mut axis = Mcx514SCurve::new(parameters, cycle_1024()).unwrap();
+    let mut checker = Checker::new(&axis);
+    let mut sixteenths = Vec::new();
+    while !axis.is_complete() {
+        let state = checker.step(&mut axis).unwrap();
+        let bits = state.velocity.to_bits();
+        assert_eq!(bits % (1 << 28), 0, "{state:?}");
+        sixteenths.push(bits >> 28);
+        assert!(sixteenths.len() < 1_000);
+    }
+    assert_eq!(axis.state().position, 200);
+    // SV 16/16, then +4, +5, +5, +5, +4, +1 to DV 40/16.
+    assert_eq!(sixteenths[..8], [16, 20, 25, 30, 35, 39, 40, 40]);
+    let slowing = 6 + sixteenths[6..].iter().position(|&v| v < 40).unwrap();
+    assert!(slowing > 8);
+    assert!(sixteenths[8..slowing].iter().all(|&v| v == 40));
+    // Down by the same rates to SV, then creep at SV to the finish point (the last moving cycle
+    // cut to the pulses left), and stop.
+    assert_eq!(
+        sixteenths[slowing..slowing + 7],
+        [36, 31, 26, 21, 17, 16, 16]
+    );
+    let last = sixteenths.len() - 1;
+    assert!(sixteenths[slowing + 5..last - 1].iter().all(|&v| v == 16));
+    assert!((1..=16).contains(&sixteenths[last - 1]));
+    assert_eq!(sixteenths[last], 0);
+}
+
+#[test]
+fn the_issue_17_move_reaches_the_drive_speed_within_the_continuous_bound() {
+    // Issue #17's example (raw registers, 4 ms): per cycle SV = 309,169 · 0.004 = 1,236.676,
+    // DV = 32,000, AC = DC = 16,777,216 · 0.004² = 268.435456, JK = DJ = 833,997,503 · 0.004³ ≈
+    // 53.3758: the cap is 5.03 jerk steps. The continuous S-curve from rest to rest takes
+    // 2 · (DV/AC + AC/JK) + (P − DV · (DV/AC + AC/JK)) / DV = 2 · 124.24 + 34.00 ≈ 282.5 cycles.
+    // The speed-up (gap 30,763.3) takes at most ⌈gap/AC + AC/JK⌉ = ⌈114.6 + 5.03⌉ = 120 cycles
+    // plus 2 (a cycle held below the cap, one taking the slack between two steps of the
+    // descent) — choosing only rate ± J it ended with 35 cycles at a rate of 1.56
+    // pulses/cycle². With automatic deceleration decided on whole cycles, the slow-down may
+    // then end up to DV + SV pulses early: at most (DV + SV)/SV = 26.9 cycles of creep at SV
+    // (it was 430). So at most 282.5 + 8 (whole cycles of the two ramps) + 26.9 + 1 (the stop).
+    let parameters = Mcx514ScurveParameters {
+        trapezoid: Mcx514Parameters {
+            pulses: 5_063_858,
+            initial_speed: InitialSpeed::from_bits(309_169).unwrap(),
+            drive_speed: DriveSpeed::from_bits(8_000_000).unwrap(),
+            acceleration: Acceleration::from_bits(16_777_216).unwrap(),
+            deceleration: Deceleration::from_bits(16_777_216).unwrap(),
+            deceleration_mode: DecelerationMode::Automatic,
+        },
+        jerk: Jerk::from_bits(833_997_503).unwrap(),
+        deceleration_jerk: DecelerationJerk::from_bits(833_997_503).unwrap(),
+    };
+    let mut axis = Mcx514SCurve::new(parameters, CycleTime::from_seconds(4e-3).unwrap()).unwrap();
+    let mut checker = Checker::new(&axis);
+    let drive_speed = 32_000i64 << 32;
+    let mut cycles = 0;
+    let mut at_drive_speed = None;
+    while !axis.is_complete() {
+        let state = checker.step(&mut axis).unwrap();
+        cycles += 1;
+        if state.velocity.to_bits() == drive_speed && at_drive_speed.is_none() {
+            at_drive_speed = Some(cycles);
+        }
+        assert!(cycles < 1_000);
+    }
+    assert_eq!(axis.state().position, 5_063_858);
+    // The start cycle at SV, then the speed-up.
+    let speed_up = at_drive_speed.expect("DV reached") - 1;
+    assert!(speed_up <= 122, "speed-up in {speed_up} cycles");
+    assert!(cycles <= 319, "{cycles} cycles");
+}
+
+#[test]
+fn automatic_moves_take_the_continuous_s_curve_and_the_creep_of_the_chips_rule_at_most() {
+    // 4,000 random automatic moves short enough to step (as the probe's random lines: at most a
+    // few thousand cycles), each within the bound of `tests/script/mcx514_scurve.rs` (derived
+    // there): the continuous S-curve from rest to rest, 8 cycles for the ramps' whole cycles,
+    // and a creep at SV over DV + SV + JK·R·N pulses. Before the ramp could take the slack
+    // between two jerk steps, moves crept past it (the first: 1,088 cycles against 442.8).
+    let mut seed = 0x5eed_u64;
+    let mut uniform = move || {
+        seed = seed
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut log_uniform = |low: f64, high: f64| {
+        let r = uniform();
+        (low.ln() + r * (high.max(low).ln() - low.ln())).exp() as u32
+    };
+    let mut moves = 0;
+    while moves < 4_000 {
+        let cycle = [1e-4, 2.5e-4, 1e-3, 2e-3, 4e-3][log_uniform(1.0, 5.99) as usize - 1];
+        let pulses = log_uniform(1.0, 1e6).max(1);
+        let drive = log_uniform((f64::from(pulses) / (2_000.0 * cycle)).ceil(), 8e6);
+        let initial = log_uniform((f64::from(pulses) / (8_000.0 * cycle)).ceil(), drive.into());
+        let initial = initial.clamp(1, drive);
+        let acceleration =
+            log_uniform((f64::from(drive) / (1_500.0 * cycle)).ceil(), 536_870_911.0);
+        let jerk = log_uniform(
+            (f64::from(acceleration) / (1_500.0 * cycle))
+                .ceil()
+                .min(1e9),
+            1_073_741_823.0,
+        );
+        let parameters = Mcx514ScurveParameters {
+            trapezoid: Mcx514Parameters {
+                pulses,
+                initial_speed: InitialSpeed::from_bits(initial).unwrap(),
+                drive_speed: DriveSpeed::from_bits(drive).unwrap(),
+                acceleration: Acceleration::from_bits(acceleration).unwrap(),
+                deceleration: Deceleration::from_bits(acceleration).unwrap(),
+                deceleration_mode: DecelerationMode::Automatic,
+            },
+            jerk: Jerk::from_bits(jerk).unwrap(),
+            deceleration_jerk: DecelerationJerk::from_bits(jerk).unwrap(),
+        };
+        let Ok(mut axis) = Mcx514SCurve::new(parameters, CycleTime::from_seconds(cycle).unwrap())
+        else {
+            continue; // a register that vanishes per cycle
+        };
+        moves += 1;
+        let per_cycle = |value: u32, power: i32| f64::from(value) * cycle.powi(power);
+        let (s, v) = (per_cycle(initial, 1), per_cycle(drive, 1));
+        let (a, j, p) = (
+            per_cycle(acceleration, 2),
+            per_cycle(jerk, 3),
+            f64::from(pulses),
+        );
+        let gain = v - s;
+        let ramp = (a / j).min((gain / j).sqrt()) + 4.0;
+        let speed_up = gain / a + a / j + 2.0 * (gain / j).sqrt() + 3.0;
+        let creep = (v + s + j * ramp * speed_up) / s;
+        let bound = (p / s).min(scurve_duration(p, v, a, j) + 8.0 + creep) + 3.0;
+        let cycles = axis.states_until_complete().take(1_000_000).count();
+        assert!(
+            cycles as f64 <= bound,
+            "{cycles} cycles > {bound:.1}: {parameters:?} at {cycle} s"
+        );
+        assert_eq!(axis.state().position, pulses);
+    }
 }

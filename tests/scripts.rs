@@ -120,9 +120,45 @@ fn scripted_mcx514_scurve() {
 #[test]
 fn scripted_gearing() {
     let budget = script::cycle_budget();
-    scripts("gearing", 8_000, script::gearing::script(), |s| {
-        s.run(budget)
-    });
+    scripts(
+        "gearing",
+        8_000,
+        script::gearing::script(script::trapezoidal::script()),
+        |s| s.run(budget),
+    );
+}
+
+#[test]
+fn scripted_gearing_to_velocity_contouring() {
+    let budget = script::cycle_budget();
+    scripts(
+        "gearing to velocity contouring",
+        3_000,
+        script::gearing::script(script::velocity::script()),
+        |s| s.run(budget),
+    );
+}
+
+#[test]
+fn scripted_gearing_to_scurve() {
+    let budget = script::cycle_budget();
+    scripts(
+        "gearing to the S-curve",
+        3_000,
+        script::gearing::script(script::scurve::script()),
+        |s| s.run(budget),
+    );
+}
+
+#[test]
+fn scripted_encoder_gearing() {
+    let budget = script::cycle_budget();
+    scripts(
+        "encoder gearing",
+        8_000,
+        script::encoder_gearing::script(),
+        |s| s.run(budget),
+    );
 }
 
 #[test]

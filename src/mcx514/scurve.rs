@@ -55,33 +55,40 @@ impl Ramp {
         i64::try_from(sum).unwrap_or(i64::MAX)
     }
 
-    /// The next rate and its tail, from the present ones with `gap` of speed still to gain (or
-    /// shed): the largest of rate + J (capped), rate, rate − J whose rate plus tail fits the gap,
-    /// so the speed lands on its target with the rate at zero, every change within J. The
-    /// invariant (rate + tail ≤ gap after the previous choice) makes rate − J always fit; the
-    /// last resort, a rate ≤ J equal to the gap, lands exactly.
+    /// This cycle's speed change, from the ramp's rate and tail with `gap` of speed still to
+    /// gain (or shed), updating them: the largest of rate + J (capped) whose rate plus tail fits
+    /// the gap; else, with the slack (the gap less the tail) above rate − J, the slack itself
+    /// (at most the rate: the rate held), the ramp's rate kept so that rate − J follows; else
+    /// rate − J. So the rate stays within J of the last change, and the descent from the top
+    /// takes in one cycle what the tail leaves over (the slack is constant while the rate falls
+    /// by J, so it fits between two of its steps): the speed lands on its target with the rate
+    /// at zero, with no cycles crept at a rate below one jerk step.
     ///
-    /// No overflow: the rate and tail in hand were chosen with rate + tail ≤ the gap then
-    /// (< 2⁶³), so tail + rate is in range; a sum with the gap is compared as a difference.
+    /// Invariant: tail ≤ gap (the rate chosen last fitted the gap then). No overflow: the rate
+    /// and tail in hand were chosen with rate + tail ≤ the gap then (< 2⁶³), so tail + rate is
+    /// in range; a sum with the gap is compared as a difference.
     #[inline]
-    fn next(&self, rate: i64, tail: i64, gap: i64) -> (i64, i64) {
-        let (up, up_tail) = if rate >= self.cap_less_jerk {
+    fn next(&self, rate: &mut i64, tail: &mut i64, gap: i64) -> i64 {
+        let (up, up_tail) = if *rate >= self.cap_less_jerk {
             (self.cap, self.cap_tail)
         } else {
-            (rate + self.jerk, tail + rate)
+            (*rate + self.jerk, *tail + *rate)
         };
         if up <= gap && up_tail <= gap - up {
-            return (up, up_tail);
+            (*rate, *tail) = (up, up_tail);
+            return up;
         }
-        if rate <= gap && tail <= gap - rate {
-            return (rate, tail);
+        // ≥ 0 by the invariant; rate − J, held at zero (the last step from below J).
+        let slack = gap - *tail;
+        let down = (*rate - self.jerk).max(0);
+        if slack > down {
+            // Within [rate − J, rate]: the rate held (slack ≥ rate), or the slack once, after
+            // which the gap is the tail and the descent goes on from the rate.
+            return slack.min(*rate);
         }
-        let down = rate - self.jerk;
-        if down > 0 {
-            return (down, tail - down);
-        }
-        // rate ≤ J and its tail is 0, yet rate > gap: the gap itself (0 ≤ gap < rate ≤ J).
-        (gap.max(0), 0)
+        // S(r − J) = S(r) − (r − J); from r ≤ J both are 0.
+        (*rate, *tail) = (down, *tail - down);
+        down
     }
 }
 
@@ -90,12 +97,17 @@ impl Ramp {
 enum Phase {
     /// At rest before the first cycle.
     Start,
-    /// Speeding up toward DV (the rate ramps by JK within AC), then cruising at DV.
+    /// Speeding up toward DV (the rate ramps by JK within AC).
     Accelerating,
+    /// At DV with the rate at zero (until deceleration starts).
+    Cruising,
     /// Deceleration has started while the rate was still positive: it falls by JK to zero first.
     Easing,
-    /// Slowing down toward SV (the rate ramps by DJ within DC), then creeping at SV.
+    /// Slowing down toward SV (the rate ramps by DJ within DC).
     Decelerating,
+    /// At SV with the rate at zero, to the finish point (a smooth stop makes it
+    /// [`Phase::Decelerating`] again, which ends it).
+    Creeping,
 }
 
 /// The MCX514's S-curve acceleration/deceleration on the driving axis (SPEC §12.2), cycle by
@@ -105,7 +117,9 @@ enum Phase {
 ///
 /// Integer and division-free per cycle (I32F32 raw bits): each cycle takes the largest rate,
 /// within one jerk of the last, from which a ramp-down at the jerk still lands on the target
-/// speed (see `Ramp::next`); so the speed reaches DV (and SV) exactly, with the rate at zero.
+/// speed, and once the ramp-down has begun, the slack it leaves in one cycle between two of its
+/// steps (see `Ramp::next`); so the speed reaches DV (and SV) exactly, with the rate at zero,
+/// and no cycles creep at a rate below one jerk step.
 ///
 /// When deceleration starts, as for [`Mcx514Trapezoidal`]: **automatic** (AC = DC and JK = DJ)
 /// on the first cycle on which the pulses left are ≤ the pulses output while speeding up;
@@ -250,47 +264,75 @@ impl Mcx514SCurve {
     }
 
     /// The velocity of the next cycle before the cut to the pulses left (raw I32F32), with the
-    /// phase it leaves the move in.
-    #[inline]
+    /// phase it leaves the move in. Inlined into [`step`](ProfileGenerator::step) with the two
+    /// ramps; the events (the start, the trigger, easing, landing) are calls off that path.
+    #[inline(always)]
     fn next_velocity(&mut self, position: i64, velocity: i64) -> i64 {
-        if self.phase == Phase::Accelerating && position >= self.trigger {
-            self.phase = Phase::Easing;
-        }
         match self.phase {
-            Phase::Accelerating => {
-                let gap = self.drive - velocity;
-                if gap < self.speed_up.first && self.rate == 0 {
-                    // Cruising at DV (gap 0): what the ramp would choose, sooner; else the
-                    // gap in one cycle.
-                    return self.land(position, velocity, gap.max(0));
-                }
-                (self.rate, self.tail) = self.speed_up.next(self.rate, self.tail, gap);
-                if self.rate == gap && gap != 0 {
-                    // At DV (or there this cycle): with automatic deceleration the trigger
-                    // becomes the finish point less the pulses output while speeding up.
-                    self.at_drive_speed(position + gap + velocity);
-                }
-                velocity + self.rate
+            Phase::Cruising if position < self.trigger => velocity,
+            Phase::Creeping => velocity,
+            Phase::Accelerating if position < self.trigger => self.accelerate(position, velocity),
+            Phase::Decelerating => self.decelerate(position, velocity),
+            _ => self.event(position, velocity),
+        }
+    }
+
+    /// Speeding up toward DV, or cruising there.
+    #[inline(always)]
+    fn accelerate(&mut self, position: i64, velocity: i64) -> i64 {
+        let gap = self.drive - velocity;
+        if self.rate == 0 && gap < self.speed_up.first {
+            if gap <= 0 {
+                // At DV: cruise (what the ramp would choose, sooner).
+                self.phase = Phase::Cruising;
+                return velocity;
             }
-            Phase::Decelerating => {
-                let initial = self.initial;
-                if self.stopping && velocity <= initial {
-                    // A smooth stop ends at SV, as the chip's decelerating stop does.
-                    self.complete = true;
-                    return 0;
-                }
-                // Excess over SV ≥ 0: the slow-down never goes below SV.
-                let excess = velocity - initial;
-                if excess < self.slow_down.first && self.rate == 0 {
-                    // Creeping at SV (excess 0): what the ramp would choose, sooner; else the
-                    // excess in one cycle.
-                    return self.land(position, velocity, -excess.max(0));
-                }
-                (self.rate, self.tail) = self.slow_down.next(self.rate, self.tail, excess);
-                velocity - self.rate
+            return self.land(position, velocity, gap);
+        }
+        let change = self.speed_up.next(&mut self.rate, &mut self.tail, gap);
+        // (Gap 0 with the rate still above zero: at DV already, the trigger set.)
+        if change == gap && gap != 0 {
+            // At DV this cycle: with automatic deceleration the trigger becomes the finish
+            // point less the pulses output while speeding up.
+            self.at_drive_speed(position + gap + velocity);
+        }
+        velocity + change
+    }
+
+    /// Slowing down toward SV, or creeping there; a smooth stop ends at SV.
+    #[inline(always)]
+    fn decelerate(&mut self, position: i64, velocity: i64) -> i64 {
+        let initial = self.initial;
+        if self.stopping && velocity <= initial {
+            // A smooth stop ends at SV, as the chip's decelerating stop does.
+            self.complete = true;
+            return 0;
+        }
+        // Excess over SV ≥ 0: the slow-down never goes below SV.
+        let excess = velocity - initial;
+        if self.rate == 0 && excess < self.slow_down.first {
+            if excess <= 0 {
+                // At SV: creep (what the ramp would choose, sooner).
+                self.phase = Phase::Creeping;
+                return velocity;
             }
-            Phase::Easing => self.ease(velocity),
+            return self.land(position, velocity, -excess);
+        }
+        velocity - self.slow_down.next(&mut self.rate, &mut self.tail, excess)
+    }
+
+    /// The first cycle, the trigger reached while speeding up or at DV, and easing.
+    #[cold]
+    #[inline(never)]
+    fn event(&mut self, position: i64, velocity: i64) -> i64 {
+        match self.phase {
             Phase::Start => self.start(),
+            Phase::Accelerating | Phase::Cruising | Phase::Easing => {
+                self.phase = Phase::Easing;
+                self.ease(position, velocity)
+            }
+            // Not reached (no event while slowing down or creeping); as on the path.
+            Phase::Decelerating | Phase::Creeping => self.decelerate(position, velocity),
         }
     }
 
@@ -325,10 +367,8 @@ impl Mcx514SCurve {
     /// cycle). The ramp's own choice from zero would be to stay (+J overshoots): the speed would
     /// never reach DV, and a smooth stop that had to come down to SV would never end.
     #[cold]
+    #[inline(never)]
     fn land(&mut self, position: i64, velocity: i64, change: i64) -> i64 {
-        if change == 0 {
-            return velocity;
-        }
         (self.rate, self.tail) = (change.abs(), 0);
         if change > 0 {
             self.at_drive_speed(position + change + velocity);
@@ -337,7 +377,7 @@ impl Mcx514SCurve {
     }
 
     /// At DV after a cycle that ended at `reached` (raw I32F32 pulses).
-    #[cold]
+    #[inline]
     fn at_drive_speed(&mut self, reached: i64) {
         if self.automatic {
             self.trigger = self.finish - reached;
@@ -346,8 +386,7 @@ impl Mcx514SCurve {
 
     /// Deceleration has started: a rate still rising the speed falls by JK to zero first (the
     /// speed-up's tail kept the speed within DV), then the slow-down begins.
-    #[cold]
-    fn ease(&mut self, velocity: i64) -> i64 {
+    fn ease(&mut self, position: i64, velocity: i64) -> i64 {
         if self.rate > 0 {
             let down = self.rate - self.speed_up.jerk;
             (self.rate, self.tail) = if down > 0 {
@@ -359,7 +398,7 @@ impl Mcx514SCurve {
         }
         self.phase = Phase::Decelerating;
         (self.rate, self.tail) = (0, 0);
-        self.next_velocity(i64::MIN, velocity)
+        self.decelerate(position, velocity)
     }
 }
 
@@ -397,9 +436,12 @@ impl ProfileGenerator for Mcx514SCurve {
         match kind {
             StopKind::Smooth => {
                 self.stopping = true;
-                if self.phase == Phase::Accelerating {
-                    self.phase = Phase::Easing;
-                }
+                self.phase = match self.phase {
+                    Phase::Accelerating | Phase::Cruising => Phase::Easing,
+                    // Creeping: SV reached, the stop ends it (`decelerate`).
+                    Phase::Creeping => Phase::Decelerating,
+                    phase => phase,
+                };
             }
             StopKind::Abrupt => self.complete = true,
         }
@@ -412,7 +454,7 @@ impl ProfileGenerator for Mcx514SCurve {
         // (from moving to rest).
         let exempt = (before == 0) != (velocity == 0) || velocity < self.wanted;
         let (jerk, max_acceleration) = match self.phase {
-            Phase::Decelerating => (self.slow_down.jerk, self.slow_down.cap),
+            Phase::Decelerating | Phase::Creeping => (self.slow_down.jerk, self.slow_down.cap),
             _ => (self.speed_up.jerk, self.speed_up.cap),
         };
         Limits {

@@ -3,10 +3,17 @@
 //! command surface in motion, destinations past either end of the arc included) or by the MCX514
 //! trapezoid (runs and stops). Every cycle: the driving profile's own checks, every point within
 //! ±1 LSB of the true circle (exact, i128), at most one pulse per axis per step, and on the arc's
-//! end once the profile is there.
+//! end once the profile is there. With the MCX514 driver, `Arc::mcx514_profile` is asked for
+//! the arc's profile first, with or without jerks: refused for a jerk (S-curve driving),
+//! automatic deceleration or an arc of more than 2³⁰ − 1 steps, naming the parameter; else the
+//! trapezoid over the arc's steps.
 
-use profilegen::interpolation::{Arc, CircleState, Direction};
-use profilegen::{Error, Limits, ProfileGenerator, State, StopKind};
+use profilegen::format::mcx514::{DecelerationJerk, FinishPoint, Jerk};
+use profilegen::interpolation::{Arc, CircleState, CircularDriving, Direction};
+use profilegen::{
+    DecelerationMode, Error, Limits, Mcx514Parameters, Mcx514Trapezoidal, ProfileGenerator, State,
+    StopKind,
+};
 
 use super::{mcx514, trapezoidal, Bytes, Scripted, Step};
 
@@ -158,6 +165,81 @@ pub struct Script {
     pub overshoot: i64,
     /// The driver.
     pub driver: Driver,
+    /// JK and DJ (raw) asked of `Arc::mcx514_profile` with the MCX514 driver (refused if any).
+    pub jerks: (Option<u32>, Option<u32>),
+}
+
+/// `Arc::mcx514_profile` with `driving`: refused for a jerk (JK named first), automatic
+/// deceleration or more than 2³⁰ − 1 steps, each naming its parameter; else exactly the
+/// trapezoid of `registers` over the arc's steps.
+fn check_profile(
+    arc: &Arc,
+    registers: Mcx514Parameters,
+    jerks: (Option<u32>, Option<u32>),
+    cycle: profilegen::format::CycleTime,
+) -> Result<(), String> {
+    let (Ok(jerk), Ok(deceleration_jerk)) = (
+        jerks.0.map(Jerk::from_bits).transpose(),
+        jerks.1.map(DecelerationJerk::from_bits).transpose(),
+    ) else {
+        return Ok(()); // a jerk out of its range: not a register
+    };
+    let driving = CircularDriving {
+        initial_speed: registers.initial_speed,
+        drive_speed: registers.drive_speed,
+        acceleration: registers.acceleration,
+        deceleration: registers.deceleration,
+        jerk,
+        deceleration_jerk,
+        deceleration_mode: registers.deceleration_mode,
+    };
+    // `&self` on a `Copy` arc: a refusal cannot change it (nothing else is given).
+    let result = arc.mcx514_profile(driving, cycle);
+    let refused = if jerk.is_some() {
+        Some(Jerk::PARAMETER)
+    } else if deceleration_jerk.is_some() {
+        Some(DecelerationJerk::PARAMETER)
+    } else if registers.deceleration_mode == DecelerationMode::Automatic {
+        Some("deceleration point")
+    } else if arc.steps() > u64::from(FinishPoint::MAX_BITS as u32) {
+        Some("arc steps")
+    } else {
+        None
+    };
+    match (refused, result) {
+        (Some(expected), Err(Error::Refused { parameter, .. }))
+            if parameter == expected && expected != "arc steps" =>
+        {
+            Ok(())
+        }
+        (
+            Some("arc steps"),
+            Err(Error::OutOfRange {
+                parameter: "arc steps",
+                ..
+            }),
+        ) => Ok(()),
+        (None, result) => {
+            let pulses = arc.steps() as u32;
+            let expected = Mcx514Trapezoidal::new(
+                Mcx514Parameters {
+                    pulses,
+                    ..registers
+                },
+                cycle,
+            );
+            if result == expected {
+                Ok(())
+            } else {
+                Err(format!(
+                    "mcx514_profile gave {result:?}, expected {expected:?}"
+                ))
+            }
+        }
+        (expected, result) => Err(format!(
+            "mcx514_profile gave {result:?}, expected a refusal naming {expected:?}"
+        )),
+    }
 }
 
 impl Script {
@@ -205,6 +287,9 @@ impl Script {
                 drive(arc, script.build()?, &script.steps, budget)
             }
             Driver::Mcx514(script) => {
+                if let Some((registers, cycle)) = script.registers()? {
+                    check_profile(&arc, registers, self.jerks, cycle)?;
+                }
                 let mut script = script.clone();
                 let Ok(pulses) = u32::try_from(steps) else {
                     return Ok(0);
@@ -232,12 +317,16 @@ impl Script {
             0 => Driver::Trapezoidal(trapezoidal::Script::decode(bytes)),
             _ => Driver::Mcx514(mcx514::Script::decode(bytes)),
         };
+        let mut jerk =
+            || (bytes.byte() % 4 == 0).then(|| bytes.boosted(Jerk::MAX_BITS.into()) as u32);
+        let jerks = (jerk(), jerk());
         Self {
             centre,
             finish,
             counter_clockwise,
             overshoot,
             driver,
+            jerks,
         }
     }
 }
@@ -258,7 +347,7 @@ fn drive<G: Scripted>(
 /// to 2³⁰; the trapezoid starting near the arc's start.
 #[cfg(test)]
 pub fn script() -> impl proptest::strategy::Strategy<Value = Script> {
-    use super::boosted_signed;
+    use super::{boosted, boosted_signed};
     use fixed::types::I32F32;
     use proptest::prelude::*;
     let near_start =
@@ -276,20 +365,23 @@ pub fn script() -> impl proptest::strategy::Strategy<Value = Script> {
         1 => boosted_signed((1 << 30) - 1),
     ]
     .prop_map(|c| c as i32);
+    let jerk = || prop_oneof![3 => Just(None), 1 => boosted(0, Jerk::MAX_BITS.into()).prop_map(|bits| Some(bits as u32))];
     (
         [coordinate.clone(), coordinate],
         prop_oneof![1 => Just(None), 2 => any::<u16>().prop_map(Some)],
         any::<bool>(),
         prop_oneof![3 => Just(0i64), 1 => boosted_signed(1 << 12)],
         driver,
+        (jerk(), jerk()),
     )
         .prop_map(
-            |(centre, finish, counter_clockwise, overshoot, driver)| Script {
+            |(centre, finish, counter_clockwise, overshoot, driver, jerks)| Script {
                 centre,
                 finish,
                 counter_clockwise,
                 overshoot,
                 driver,
+                jerks,
             },
         )
 }

@@ -1,22 +1,80 @@
-//! Electronic gearing (SPEC §14) scripts: a `Follower` geared to a scripted trapezoidal master
-//! (its whole command surface, stops included, runs in motion), with ratio changes in motion
-//! (re-anchoring), deceleration changes (zero refused) and both stops of the follower. Every
-//! cycle, while engaged: slave = anchor + ratio · (master travel since the anchor), exactly
-//! (i128, modulo the position register's 2⁶⁴ raw wrap), the travel the sum of the master's
-//! count changes.
+//! Electronic gearing (SPEC §14) scripts: a `Follower` geared to a scripted master — the
+//! trapezoid, velocity contouring or the S-curve, its whole command surface, stops included, run
+//! in motion — with ratio changes in motion (re-anchoring), deceleration changes (zero refused)
+//! and both stops of the follower. Every cycle, while engaged: slave = anchor + ratio · (master
+//! travel since the anchor), exactly (i128, modulo the position register's 2⁶⁴ raw wrap), the
+//! travel the sum of the master's count changes.
+
+use core::fmt::Debug;
 
 use fixed::types::I32F32;
 use profilegen::format::mc1451a::{GearRatio, TrapezoidalAcceleration};
 use profilegen::gearing::Follower;
-use profilegen::{Error, Limits, ProfileGenerator, State, StopKind, Trapezoidal};
+use profilegen::{
+    Error, Limits, ProfileGenerator, SCurve, State, StopKind, Trapezoidal, VelocityContouring,
+};
 
-use super::{counts, trapezoidal, Bytes, Scripted, Step};
+use super::{counts, scurve, trapezoidal, velocity, Bytes, Scripted, Step};
+
+/// A master's script: its generator and the steps it runs.
+pub trait MasterScript: Clone + Debug {
+    /// The master generator.
+    type Generator: Scripted;
+    /// Builds it (`None`: its registers are refused, as they must be then).
+    ///
+    /// # Errors
+    /// Valid registers refused.
+    fn build(&self) -> Result<Option<Self::Generator>, String>;
+    /// Its steps.
+    fn steps(&self) -> &[Step<<Self::Generator as Scripted>::Command>];
+    /// Decodes one from raw bytes (the fuzz target).
+    fn decode(bytes: &mut Bytes) -> Self;
+}
+
+impl MasterScript for trapezoidal::Script {
+    type Generator = Trapezoidal;
+    fn build(&self) -> Result<Option<Trapezoidal>, String> {
+        trapezoidal::Script::build(self)
+    }
+    fn steps(&self) -> &[Step<trapezoidal::Command>] {
+        &self.steps
+    }
+    fn decode(bytes: &mut Bytes) -> Self {
+        trapezoidal::Script::decode(bytes)
+    }
+}
+
+impl MasterScript for velocity::Script {
+    type Generator = VelocityContouring;
+    fn build(&self) -> Result<Option<VelocityContouring>, String> {
+        velocity::Script::build(self)
+    }
+    fn steps(&self) -> &[Step<velocity::Command>] {
+        &self.steps
+    }
+    fn decode(bytes: &mut Bytes) -> Self {
+        velocity::Script::decode(bytes)
+    }
+}
+
+impl MasterScript for scurve::Script {
+    type Generator = SCurve;
+    fn build(&self) -> Result<Option<SCurve>, String> {
+        scurve::Script::build(self)
+    }
+    fn steps(&self) -> &[Step<scurve::Command>] {
+        &self.steps
+    }
+    fn decode(bytes: &mut Bytes) -> Self {
+        scurve::Script::decode(bytes)
+    }
+}
 
 /// A command to the geared pair.
 #[derive(Debug, Clone)]
-pub enum Command {
+pub enum Command<C> {
     /// To the master.
-    Master(trapezoidal::Command),
+    Master(C),
     /// A stop of the master (the follower follows it down).
     MasterStop(StopKind),
     /// A new ratio (raw 1/2^16): re-anchors and re-engages.
@@ -27,8 +85,8 @@ pub enum Command {
 
 /// The follower, and the test's own account of the gear: what it should be engaged to.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Geared {
-    follower: Follower<Trapezoidal>,
+pub struct Geared<M> {
+    follower: Follower<M>,
     /// Engaged (by the test's account of SPEC §14: from the start and after a ratio change, until
     /// a stop), with the anchor (slave position bits), the ratio (raw) and the master's travel
     /// since the anchor (counts, unbounded).
@@ -49,8 +107,8 @@ fn count(state: State) -> i32 {
     (state.position.to_bits() >> 32) as i32
 }
 
-impl Geared {
-    fn new(master: Trapezoidal, ratio: i32, slave: I32F32, deceleration: u32) -> Option<Self> {
+impl<M: Scripted> Geared<M> {
+    fn new(master: M, ratio: i32, slave: I32F32, deceleration: u32) -> Option<Self> {
         let ratio_register = GearRatio::from_bits(ratio).ok()?;
         let deceleration = TrapezoidalAcceleration::from_bits(deceleration).ok()?;
         let master_previous = master.state();
@@ -71,7 +129,7 @@ impl Geared {
     }
 }
 
-impl ProfileGenerator for Geared {
+impl<M: Scripted> ProfileGenerator for Geared<M> {
     fn step(&mut self) -> State {
         let before = count(self.follower.master().state());
         self.master_previous = self.follower.master().state();
@@ -100,13 +158,13 @@ impl ProfileGenerator for Geared {
     }
 }
 
-impl Scripted for Geared {
-    type Command = Command;
+impl<M: Scripted> Scripted for Geared<M> {
+    type Command = Command<M::Command>;
 
-    fn apply(&mut self, command: &Command) -> Result<(), Error> {
+    fn apply(&mut self, command: &Command<M::Command>) -> Result<(), Error> {
         match *command {
-            Command::Master(command) => {
-                self.follower.master_mut().apply(&command)?;
+            Command::Master(ref command) => {
+                self.follower.master_mut().apply(command)?;
                 self.master_stopped = false;
             }
             Command::MasterStop(kind) => {
@@ -142,10 +200,13 @@ impl Scripted for Geared {
         counts(self.state().velocity.to_bits()).abs() / deceleration + 3.0
     }
 
-    /// Engaged: the master settled and the follower at rest; else complete.
+    /// Engaged: the master settled and the follower at rest if the master is; else complete.
     fn settled(&self) -> bool {
         if self.engaged {
-            self.follower.master().settled() && self.state().velocity == 0
+            // The master settled (at rest, or at its target velocity), the follower at rest with
+            // a master at rest.
+            let master = self.follower.master();
+            master.settled() && (master.state().velocity != 0 || self.state().velocity == 0)
         } else {
             self.is_complete()
         }
@@ -191,16 +252,16 @@ impl Scripted for Geared {
 
 /// The master's script and the gear's.
 #[derive(Debug, Clone)]
-pub struct Script {
+pub struct Script<S: MasterScript> {
     /// The master.
-    pub master: trapezoidal::Script,
+    pub master: S,
     /// Ratio (raw), the slave's start, the deceleration (raw).
     pub gear: (i32, I32F32, u32),
     /// The steps.
-    pub steps: Vec<Step<Command>>,
+    pub steps: Vec<Step<Command<<S::Generator as Scripted>::Command>>>,
 }
 
-impl Script {
+impl<S: MasterScript> Script<S> {
     /// Builds the pair and runs the script.
     ///
     /// # Errors
@@ -217,44 +278,81 @@ impl Script {
         }
     }
 
+    /// The master's own steps as the pair's — its commands and stops to the master, or (stops,
+    /// where `to_master` says no) to the follower — with the gear's commands inserted (at
+    /// indices into the growing list, reduced modulo its length + 1).
+    pub fn from_master(
+        master: S,
+        gear: (i32, I32F32, u32),
+        inserts: Vec<(usize, Command<<S::Generator as Scripted>::Command>)>,
+        to_master: &[bool],
+    ) -> Self {
+        let mut steps: Vec<_> = master
+            .steps()
+            .iter()
+            .enumerate()
+            .map(|(i, step)| match step {
+                Step::Run(k) => Step::Run(*k),
+                Step::RunFraction(f) => Step::RunFraction(*f),
+                Step::Command(c) => Step::Command(Command::Master(c.clone())),
+                // A stop to the master half the time, else to the follower.
+                Step::Stop(kind) if to_master.get(i % to_master.len().max(1)) == Some(&true) => {
+                    Step::Command(Command::MasterStop(*kind))
+                }
+                Step::Stop(kind) => Step::Stop(*kind),
+                Step::Finish => Step::Finish,
+            })
+            .collect();
+        for (at, command) in inserts {
+            let at = at % (steps.len() + 1);
+            steps.insert(at, Step::Command(command));
+        }
+        Self {
+            master,
+            gear,
+            steps,
+        }
+    }
+
     /// Decodes a script from raw bytes (the fuzz target).
     pub fn decode(bytes: &mut Bytes) -> Self {
-        let master = trapezoidal::Script::decode(bytes);
+        let master = S::decode(bytes);
         let ratio = bytes
             .boosted_signed(1 << 30)
             .clamp(-(1 << 30), (1 << 30) - 1) as i32;
         let slave = bytes.position();
         let deceleration = bytes.boosted(TrapezoidalAcceleration::MAX_BITS.into()) as u32;
-        let steps = bytes.steps(|bytes| {
-            Some(match bytes.byte() % 6 {
-                0 | 1 => Command::Master(trapezoidal::Command::decode(bytes)),
-                2 => Command::MasterStop(if bytes.byte() & 1 == 0 {
-                    StopKind::Smooth
+        let to_master: Vec<bool> = (0..12).map(|_| bytes.byte() & 1 == 0).collect();
+        let inserts = (0..bytes.byte() % 5)
+            .map(|_| {
+                let at = usize::from(bytes.byte());
+                let command = if bytes.byte() % 4 == 0 {
+                    Command::Deceleration(
+                        bytes.boosted(TrapezoidalAcceleration::MAX_BITS.into()) as u32
+                    )
                 } else {
-                    StopKind::Abrupt
-                }),
-                3 | 4 => Command::Ratio(
-                    bytes
-                        .boosted_signed(1 << 30)
-                        .clamp(-(1 << 30), (1 << 30) - 1) as i32,
-                ),
-                _ => Command::Deceleration(
-                    bytes.boosted(TrapezoidalAcceleration::MAX_BITS.into()) as u32
-                ),
+                    Command::Ratio(
+                        bytes
+                            .boosted_signed(1 << 30)
+                            .clamp(-(1 << 30), (1 << 30) - 1) as i32,
+                    )
+                };
+                (at, command)
             })
-        });
-        Self {
-            master,
-            gear: (ratio, slave, deceleration),
-            steps,
-        }
+            .collect();
+        Self::from_master(master, (ratio, slave, deceleration), inserts, &to_master)
     }
 }
 
-/// The proptest strategy: the master's own script, its commands and stops given to the master
-/// or (stops) to the follower, with ratio and deceleration changes mixed in.
+/// The proptest strategy for a master's scripts: its own script, its commands and stops given
+/// to the master or (stops) to the follower, with ratio and deceleration changes mixed in.
 #[cfg(test)]
-pub fn script() -> impl proptest::strategy::Strategy<Value = Script> {
+pub fn script<S: MasterScript + 'static>(
+    master: impl proptest::strategy::Strategy<Value = S> + 'static,
+) -> impl proptest::strategy::Strategy<Value = Script<S>>
+where
+    <S::Generator as Scripted>::Command: 'static,
+{
     use super::{boosted, boosted_signed, position};
     use proptest::prelude::*;
     let ratio =
@@ -266,36 +364,12 @@ pub fn script() -> impl proptest::strategy::Strategy<Value = Script> {
         1 => deceleration().prop_map(Command::Deceleration),
     ];
     (
-        trapezoidal::script(),
+        master,
         (ratio(), position(), deceleration()),
-        prop::collection::vec((any::<prop::sample::Index>(), gear_command), 0..4),
+        prop::collection::vec((any::<usize>(), gear_command), 0..4),
         prop::collection::vec(any::<bool>(), 12),
     )
         .prop_map(|(master, gear, inserts, to_master)| {
-            let mut steps: Vec<Step<Command>> = master
-                .steps
-                .iter()
-                .enumerate()
-                .map(|(i, step)| match step {
-                    Step::Run(k) => Step::Run(*k),
-                    Step::RunFraction(f) => Step::RunFraction(*f),
-                    Step::Command(c) => Step::Command(Command::Master(*c)),
-                    // A stop to the master half the time, else to the follower.
-                    Step::Stop(kind) if to_master[i % to_master.len()] => {
-                        Step::Command(Command::MasterStop(*kind))
-                    }
-                    Step::Stop(kind) => Step::Stop(*kind),
-                    Step::Finish => Step::Finish,
-                })
-                .collect();
-            for (at, command) in inserts {
-                let at = at.index(steps.len() + 1);
-                steps.insert(at, Step::Command(command));
-            }
-            Script {
-                master,
-                gear,
-                steps,
-            }
+            Script::from_master(master, gear, inserts, &to_master)
         })
 }

@@ -85,11 +85,12 @@ impl Script {
         }
     }
 
-    /// Builds the drive: `None` if the registers are refused, as they must be then.
+    /// The registers and the cycle time: `None` for a register out of its range (the
+    /// strategy's extremes, refused).
     ///
     /// # Errors
-    /// Valid registers refused.
-    pub fn build(&self) -> Result<Option<Drive>, String> {
+    /// A cycle time refused.
+    pub fn registers(&self) -> Result<Option<(Mcx514Parameters, CycleTime)>, String> {
         let (pulses, initial, drive, acceleration, deceleration, mode, cycle) = self.parameters;
         let cycle =
             CycleTime::from_seconds(CYCLES[cycle % CYCLES.len()]).map_err(|e| e.to_string())?;
@@ -112,7 +113,17 @@ impl Script {
                 },
             })
         })();
-        let Ok(registers) = registers else {
+        Ok(registers.ok().map(|registers| (registers, cycle)))
+    }
+
+    /// Builds the drive: `None` if the registers are refused, as they must be then.
+    ///
+    /// # Errors
+    /// Valid registers refused.
+    pub fn build(&self) -> Result<Option<Drive>, String> {
+        let (pulses, initial, drive, acceleration, _, mode, _) = self.parameters;
+        let registers = self.registers()?;
+        let Some((registers, cycle)) = registers else {
             return Ok(None); // a register out of its range: the strategy's extremes, refused
         };
         let generator = match Mcx514Trapezoidal::new(registers, cycle) {

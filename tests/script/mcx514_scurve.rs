@@ -40,7 +40,8 @@ pub struct Drive {
     finish: i64,
     /// The bound on the whole drive's cycles, from the float reference.
     bound: f64,
-    /// The continuous S-curve's duration with slack for whole cycles (automatic deceleration).
+    /// Automatic deceleration: the continuous S-curve's duration with slack for whole cycles
+    /// and the creep the chip's rule leaves (see `build`).
     tight: f64,
     /// Per-cycle AC, DC, JK, DJ, SV (pulses/cycle^k), for a stop's bound.
     rates: (f64, f64, f64, f64, f64),
@@ -49,7 +50,8 @@ pub struct Drive {
 
 impl ProfileGenerator for Drive {
     fn step(&mut self) -> State {
-        self.elapsed += 1;
+        // The move's own cycles: a script's runs may go on past its end.
+        self.elapsed += u64::from(!self.generator.is_complete());
         self.generator.step()
     }
     fn state(&self) -> State {
@@ -134,16 +136,27 @@ impl Script {
         let p = f64::from(pulses);
         // Every moving cycle but the last runs at SV or faster (the profile never slows below
         // SV before the finish point): at most P / SV cycles, whatever the mode. Disabled: at DV
-        // all the way. Automatic (AC = DC, JK = DJ): the continuous S-curve from rest to rest
-        // (which the one from SV never trails), and a creep at SV over at most the distance of
-        // the easing cycles (AC/JK) and two more at the peak (the deceleration is decided on
-        // whole cycles). Known, left as it is (see `check_settled`): the automatic move may take
-        // longer than that (`tight`), so the bound that fails is P / SV; `tight` is checked as a
-        // counted exclusion.
+        // all the way. Automatic (AC = DC, JK = DJ), at most:
+        // - the continuous S-curve from rest to rest (which the one from SV never trails), with
+        //   8 cycles for the whole cycles of the two ramps (each: the rate's steps rounded, at
+        //   most two cycles held below the cap, one that takes the slack between two steps of
+        //   the descent, the start cycle);
+        // - a creep at SV over what the slow-down leaves: the deceleration is decided on whole
+        //   cycles (at most DV + SV pulses), and the discrete slow-down's speeds are not exactly
+        //   the mirror of the speed-up's: pairing the i-th cycle of one with the i-th from the
+        //   end of the other, the rates differ by a few J only over the ramps' rate-building
+        //   cycles (R ≤ min(AC/JK, √(G/JK)) + 4, G = DV − SV) and each difference weighs at most
+        //   the speed-up's N cycles (≤ G/AC + AC/JK + 2√(G/JK) + 3): at most JK·R·N pulses
+        //   (measured: ≤ 0.32 of it over 20,000 random moves; before the ramp could take the
+        //   slack between two steps it was up to 69 times it).
         let tight = match mode {
-            Mode::Automatic => (p / s).min(
-                scurve_duration(p, v, a, j) + (a / j + 2.0) * 2.0 * (v + a) / s + 2.0 * a / j + 8.0,
-            ),
+            Mode::Automatic => {
+                let gain = (v - s).max(0.0);
+                let ramp = (a / j).min((gain / j).sqrt()) + 4.0;
+                let speed_up = gain / a + a / j + 2.0 * (gain / j).sqrt() + 3.0;
+                let creep = (v + s + j * ramp * speed_up) / s;
+                (p / s).min(scurve_duration(p, v, a, j) + 8.0 + creep)
+            }
             _ => p / s,
         } + 3.0;
         let bound = match mode {
@@ -225,18 +238,14 @@ impl Scripted for Drive {
         Ok(())
     }
 
-    /// At rest; exactly on the finish point unless stopped.
-    ///
-    /// Known slow (not fixed here, counted as an exclusion): the ramp chooses among rate + J,
-    /// rate and rate − J only, so near DV (and SV) a residual rate below one jerk step can
-    /// creep there for many cycles; with automatic deceleration at half the finish point, the
-    /// slow-down then ends early and the move creeps at SV. E.g. 5,063,858 pulses, SV 309,169,
-    /// DV 8,000,000, AC = DC 16,777,216, JK = DJ 833,997,503, 4 ms: 690 cycles where the
-    /// continuous S-curve takes 282 (the last 35 of the speed-up at a rate of 1.56 pulses/cycle²,
-    /// then 430 at SV). The P / SV bound still holds.
+    /// At rest; exactly on the finish point unless stopped; a move that was not stopped took at
+    /// most the tight bound's cycles.
     fn check_settled(&self, stopped: bool) -> Result<(), String> {
         if !stopped && self.elapsed as f64 > self.tight {
-            super::excluded();
+            return Err(format!(
+                "{} cycles, past the S-curve bound of {:.1}",
+                self.elapsed, self.tight
+            ));
         }
         let state = self.state();
         if state.velocity != 0 || (!stopped && state.position.to_bits() != self.finish) {

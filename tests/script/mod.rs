@@ -8,7 +8,7 @@
 //! tests in `tests/scripts.rs`) and a decoder from raw bytes (the cargo-fuzz targets in `fuzz/`,
 //! which include this module by path).
 //!
-//! Adding a generator (e.g. the bit-pattern interpolation, an encoder follower):
+//! Adding a generator (e.g. the bit-pattern interpolation):
 //! 1. `tests/script/<name>.rs`: a `Command` enum in raw register bits (destinations as a
 //!    `Target` relative to the live position, as `trapezoidal.rs` does), `impl Scripted` for the
 //!    generator (`apply`; `settle_bound` from `profilegen::reference`; `velocity_register`; the
@@ -44,6 +44,7 @@
 
 pub mod circular;
 pub mod continuous;
+pub mod encoder_gearing;
 pub mod gearing;
 pub mod interpolation;
 pub mod mcx514;
