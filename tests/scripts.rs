@@ -44,7 +44,7 @@ fn scripts<S: Strategy>(
         run(&value).map(drop).map_err(TestCaseError::fail)
     });
     println!(
-        "{name}: {} scripts, {} cycles, {} known-bug exclusions, in {:.1} s",
+        "{name}: {} scripts, {} cycles, {} known shortfalls held to a weaker bound, in {:.1} s",
         script::totals().scripts - before.scripts,
         script::totals().cycles - before.cycles,
         script::totals().excluded - before.excluded,

@@ -308,12 +308,14 @@ impl Scripted for SCurve {
             parameters.jerk.to_f64(),
         );
         let plan = self.plan();
-        // KNOWN (issue #17 note, for the planner's issue #11): when no shape of the search fits,
-        // the planner falls back to one-cycle ramps (`search::one_cycle_ramps`: phases
-        // [1, 0, 1, c, 1, 0, 1], peak acceleration = peak velocity = the units), which moves
-        // min(J, A, V) per cycle — correct but slow: a 0.956-count move with J = 1 raw unit takes
-        // 4,107,913,937 cycles (optimum 5,085); moves of about 250·J raw units (sub-count to a
-        // couple of counts, optimum ~20 cycles) take ~260. Narrow exclusion: exactly that plan.
+        // KNOWN (issue #11, open): when no shape of the search nor the ramps around the optimum
+        // fit (moves of a few counts or less with a jerk of a few raw units, mostly from the
+        // fractional positions stops leave), the planner falls back to ramps of one cycle
+        // (`search::one_cycle_ramps`: phases [1, 0, 1, c, 1, 0, 1], peak acceleration = peak
+        // velocity = the units). Such a move is held to that plan's own length, by hand: at
+        // most m = min(J, A, V) per moving cycle, c = max(⌈D/m⌉, 2) or one more of them, and two
+        // cycles to rest — so it still finishes in a bound derived from the registers, and each
+        // one past the optimum's bound is counted (a planner shortfall, not a skipped check).
         let one_cycle_ramps = matches!(plan.phases, [1, 0, 1, _, 1, 0, 1])
             && plan.peak_acceleration == plan.peak_velocity;
         // KNOWN, same note: a move whose continuous optimum is under a cycle (a sub-count move
@@ -321,7 +323,11 @@ impl Scripted for SCurve {
         // arrival, the cycle that zeroes the acceleration); the bound counts from one cycle.
         let floor = optimum.max(1.0);
         if self.duration() as f64 > floor + 4.0 {
-            if one_cycle_ramps {
+            let most = u64::from(parameters.jerk.to_bits())
+                .min(u64::from(parameters.max_acceleration.to_bits()) << 16)
+                .min(u64::from(parameters.max_velocity.to_bits()) << 16);
+            let ramps_bound = distance.unsigned_abs().div_ceil(most).max(2) + 3;
+            if one_cycle_ramps && self.duration() <= ramps_bound {
                 super::excluded();
                 return Ok(());
             }
