@@ -204,7 +204,7 @@ mod tests {
             velocity in log_uniform(MaxVelocity::MAX_BITS.into()),
             acceleration in log_uniform(ScurveAcceleration::MAX_BITS.into()),
             jerk in log_uniform(Jerk::MAX_BITS.into()),
-            at in 0.0f64..1.0,
+            at in any::<u64>(),
         ) {
             let destination = if negative { -(destination as i32) } else { destination as i32 };
             let parameters = ScurveParameters {
@@ -217,7 +217,8 @@ mod tests {
                 return Ok(());
             };
             let total = axis.plan().total;
-            let cycle = ((total as f64) * at) as u64;
+            // A uniform cycle of the move: total · at / 2^64.
+            let cycle = ((u128::from(total) * u128::from(at)) >> 64) as u64;
             if cycle <= 20_000 {
                 for _ in 0..cycle {
                     axis.step();
