@@ -778,16 +778,20 @@ def measure_trapezoid_commands(probe: Probe, moves: int, after: int = 3000) -> t
     return within, beyond, commands
 
 
-def measure_other_commands(probe: Probe, moves: int, seed: int = 14) -> tuple[list[int], list[int]]:
+def measure_other_commands(probe: Probe, moves: int,
+                           seed: int = 14) -> tuple[list[int], list[int], list[int], list[int]]:
     """Per-cycle counts after commands in motion of the S-curve (a smooth or abrupt stop, or both,
     at a random cycle of one of the planned random moves short enough to step) and of velocity
     contouring (new velocities, rates and stops, several in a row), every cycle from the first
-    command to the end (at most 5,000 cycles after the last)."""
+    command to the end (at most 5,000 cycles after the last); the S-curve's cycles after smooth
+    stops alone and after stops that include an abrupt one, apart; and the S-curve stop commands'
+    own counts (a smooth stop lays the whole stop out), those and smooth stops early in as many
+    longer moves."""
     import math
     import random
     rng = random.Random(seed)
     log_uniform = lambda low, high: int(math.exp(rng.uniform(math.log(low), math.log(high))))
-    scurve, velocity_counts = [], []
+    scurve, abrupt, velocity_counts, stops = [], [], [], []
     index = 0
     stepped = 0
     while stepped < moves and index < 20 * moves:
@@ -799,15 +803,30 @@ def measure_other_commands(probe: Probe, moves: int, seed: int = 14) -> tuple[li
         stepped += 1
         for _ in range(rng.randint(0, max(0, total - 1))):
             probe.call("probe_step")
-        for kind in rng.choice([[0], [1], [0, 1], [1, 0]]):
-            probe.call("probe_stop", kind)
+        kinds = rng.choice([[0], [1], [0, 1], [1, 0]])
+        counts = abrupt if 1 in kinds else scurve
+        for kind in kinds:
+            stops.append(probe.call("probe_stop", kind).instructions)
             for _ in range(rng.choice([0, 1, 3])):
-                scurve.append(probe.call("probe_step").instructions)
+                counts.append(probe.call("probe_step").instructions)
         for _ in range(5000):
-            scurve.append(probe.call("probe_step").instructions)
+            counts.append(probe.call("probe_step").instructions)
             if probe.call("probe_complete").r0:
                 break
-        scurve += [probe.call("probe_step").instructions for _ in range(2)]
+        counts += [probe.call("probe_step").instructions for _ in range(2)]
+    # Smooth stop commands in any move (over the whole ranges: the stop's own layout, not stepped
+    # to its end): at a random one of its first 2,000 cycles.
+    stepped = 0
+    while stepped < moves and index < 40 * moves:
+        move = probe.move(index)
+        index += 1
+        total = probe.call("probe_step_setup", *move).u64
+        if total <= 3000:
+            continue
+        stepped += 1
+        for _ in range(rng.randint(1, 2000)):
+            probe.call("probe_step")
+        stops.append(probe.call("probe_stop", 0).instructions)
     for _ in range(moves):
         velocity = log_uniform(1, 2**31 - 1) * rng.choice([-1, 1])
         acceleration = log_uniform(1 << 8, 2**31 - 1)
@@ -823,7 +842,7 @@ def measure_other_commands(probe: Probe, moves: int, seed: int = 14) -> tuple[li
             for _ in range(rng.choice([0, 1, 50])):
                 velocity_counts.append(probe.call("probe_velocity_step").instructions)
         velocity_counts += [probe.call("probe_velocity_step").instructions for _ in range(1000)]
-    return scurve, velocity_counts
+    return scurve, abrupt, velocity_counts, stops
 
 
 def probe_rng_gap(index: int) -> int:
@@ -893,6 +912,9 @@ def main() -> int:
     parser.add_argument("--step-budget", type=int, help="fail when any step executes more instructions")
     parser.add_argument("--setup-budget", type=int,
                         help="fail when any trapezoid set-up (starting a move) executes more instructions")
+    parser.add_argument("--stop-budget", type=int,
+                        help="fail when any S-curve stop command (with --command-moves) executes more "
+                             "instructions")
     parser.add_argument("--max-instructions", type=int, default=50_000_000,
                         help="one call running longer than this is a runaway (default %(default)s)")
     parser.add_argument("--verify", action="store_true",
@@ -990,6 +1012,7 @@ def main() -> int:
         print(f"== the other generators, one call per cycle (the bench moves and {args.trapezoid_moves} "
               "random trapezoid moves from rest, each to its end)")
         others, setups = measure_other_generators(probe, args.trapezoid_moves)
+        stops: list[int] = []
         for name, counts_ in others.items():
             print(f"  {name:26} max {max(counts_):4}, mean {statistics.fmean(counts_):6.1f} instructions "
                   f"({len(counts_)} cycles)")
@@ -1014,11 +1037,16 @@ def main() -> int:
                       f"instructions ({len(beyond)} cycles; reported, not budgeted: issue #12)")
             print(f"  {'the commands (planning)':26} max {max(commands):4}, mean {statistics.fmean(commands):6.1f} "
                   f"instructions ({len(commands)} commands)")
-            scurve_after, velocity_after = measure_other_commands(probe, args.command_moves)
+            scurve_after, abrupt_after, velocity_after, stops = measure_other_commands(probe, args.command_moves)
             others["VelocityContouring after commands"] = velocity_after
-            print(f"  {'SCurve after stops':26} max {max(scurve_after):4}, mean "
-                  f"{statistics.fmean(scurve_after):6.1f} instructions ({len(scurve_after)} cycles; reported, "
-                  "not budgeted: the smooth stop decides every cycle, by a closed form, issue #12)")
+            others["SCurve after smooth stops"] = scurve_after
+            print(f"  {'SCurve after smooth stops':26} max {max(scurve_after):4}, mean "
+                  f"{statistics.fmean(scurve_after):6.1f} instructions ({len(scurve_after)} cycles)")
+            print(f"  {'SCurve after abrupt stops':26} max {max(abrupt_after):4}, mean "
+                  f"{statistics.fmean(abrupt_after):6.1f} instructions ({len(abrupt_after)} cycles; reported, "
+                  "not budgeted: the abrupt stop's cycle and the next take the slow path, issue #12)")
+            print(f"  {'SCurve stop commands':26} max {max(stops):4}, mean "
+                  f"{statistics.fmean(stops):6.1f} instructions ({len(stops)} stops)")
             print(f"  {'VelocityContouring after commands':26} max {max(velocity_after):4}, mean "
                   f"{statistics.fmean(velocity_after):6.1f} instructions ({len(velocity_after)} cycles)")
         print(f"== a 3-axis linear interpolation, one call per cycle (LinearInterpolation::step: the "
@@ -1042,6 +1070,9 @@ def main() -> int:
 
     def within(what: str, values: list[int], budget: int | None, where: str, unit: str) -> bool:
         """Prints whether the largest of `values` is within `budget` (no budget: nothing to say)."""
+        if budget is not None and not values:
+            print(f"FAIL: {what}: nothing measured for its budget of {budget}", file=sys.stderr)
+            return False
         if budget is None:
             return True
         worst_value = max(values)
@@ -1055,6 +1086,7 @@ def main() -> int:
 
     planning_ok = within("planning", counts, args.plan_budget, f" (move {worst[0]})", "moves")
     planning_ok &= within("Trapezoid set-up", setups, args.setup_budget, "", "moves")
+    planning_ok &= within("an S-curve stop command", stops, args.stop_budget, "", "stops")
     stepping_ok = within("one step of SCurve", all_steps, args.step_budget, "", "cycles")
     for name, counts_ in others.items():
         stepping_ok &= within(f"one step of {name}", counts_, args.step_budget, "", "cycles")

@@ -128,7 +128,8 @@ pub struct SCurve {
     /// Steps until the next event: a jerk change, the end of the move, a stop's next cycle.
     countdown: u64,
     /// Index of the next jerk change in the schedule, replayed on the fast path of
-    /// [`ProfileGenerator::step`]; off the plan (stops, rest) the schedule's sentinel, which sends
+    /// [`ProfileGenerator::step`] (a smooth stop's changes, after the plan's, too); off the plan
+    /// (an abrupt stop, rest, a stop decided per cycle) the schedule's sentinel, which sends
     /// every event to the slow path. The move is complete once its end marker is replayed.
     next_change: usize,
     /// A correction to the jerk that the next event takes back (a move started right after an
@@ -285,6 +286,10 @@ impl SCurve {
     /// Its peaks are found when asked for, by one pass over the plan's few dozen jerk changes
     /// (planning itself does not need them); [`Self::duration`] is the length alone, for nothing.
     pub fn plan(&self) -> ScurvePlan {
+        // A smooth stop laid out over the plan's changes kept the plan with its peaks.
+        if self.schedule.plan.peak_velocity != I32F32::ZERO {
+            return self.schedule.plan;
+        }
         // The peaks are found when asked for, off the planning path: one pass over the replay.
         let replay = self.schedule.replay(self.direction, self.limits);
         ScurvePlan {
@@ -449,9 +454,14 @@ impl SCurve {
         }
     }
 
-    /// Whether the planned move has replayed its end marker.
+    /// Whether the planned move has replayed its end marker, or a smooth stop laid out as jerk
+    /// changes has come to rest (it passes no other state of velocity and acceleration zero).
     fn arrived(&self) -> bool {
-        self.motion == Motion::Planned && self.next_change == self.schedule.len()
+        match self.motion {
+            Motion::Planned => self.next_change == self.schedule.len(),
+            Motion::Stopping => self.state.velocity == 0 && self.state.acceleration == 0,
+            _ => false,
+        }
     }
 
     /// The slow path of [`ProfileGenerator::step`]: the event that the countdown reached.
@@ -497,6 +507,31 @@ impl SCurve {
             }
             Motion::Rest => self.rest(),
         }
+    }
+
+    /// A smooth stop from the present state: laid out whole as jerk changes after the plan's
+    /// ([`stop::lay_out`]), which the fast path of [`ProfileGenerator::step`] replays; from a
+    /// state it does not cover, cycle by cycle ([`Self::slow_down`]).
+    fn lay_out_stop(&mut self) {
+        let laid_out = stop::lay_out(
+            self.direction * self.state.acceleration.to_bits(),
+            self.direction * self.state.velocity.to_bits(),
+            self.limits,
+        );
+        let Some((changes, count)) = laid_out else {
+            self.slow_down();
+            return;
+        };
+        if !self.schedule.fits_after(count) {
+            // The stop overwrites some of the plan's changes: the plan with its peaks is kept
+            // for [`Self::plan`] (a pass over the changes, so only when needed).
+            self.schedule.plan = self.plan();
+        }
+        let first = self.schedule.seal_at_end(&changes[..count], self.direction);
+        let change = self.schedule.run(first);
+        self.jerk = change.jerk;
+        self.countdown = change.hold;
+        self.next_change = first + 1;
     }
 
     /// The next cycle of a smooth stop: the jerk that brings the acceleration to the stop's next
@@ -578,17 +613,19 @@ impl ProfileGenerator for SCurve {
         );
         if self.arrived() {
             self.motion = Motion::Rest;
+            self.next_change = SENTINEL;
         }
-        self.next_change = SENTINEL;
         match (kind, self.motion) {
             (_, Motion::Rest) | (StopKind::Smooth, Motion::Stopping | Motion::AbruptPending) => {}
             // Not moved yet (a stop before the first step of a move): at rest already.
             (StopKind::Smooth, Motion::Planned) if velocity == 0 => self.rest(),
             (StopKind::Smooth, Motion::Planned) => {
                 self.motion = Motion::Stopping;
-                self.slow_down();
+                self.next_change = SENTINEL;
+                self.lay_out_stop();
             }
             (StopKind::Abrupt, _) => {
+                self.next_change = SENTINEL;
                 self.motion = Motion::AbruptPending;
                 // The next step's acceleration is the whole drop to zero velocity.
                 self.jerk = -velocity - acceleration;

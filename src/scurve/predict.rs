@@ -4,7 +4,7 @@
 
 use crate::predict::{Piece, Prediction, MAX_SEGMENTS};
 
-use super::{Motion, SCurve};
+use super::{Motion, SCurve, SENTINEL};
 
 impl SCurve {
     /// The future of this axis from its present state, for as long as it gets no further
@@ -12,8 +12,9 @@ impl SCurve {
     /// reaches a position, each without stepping (see [`Prediction`]). Built from the plan's
     /// runs in one pass (at most 45 closed forms).
     ///
-    /// `None` during a smooth stop, which the S-curve decides one cycle at a time from its state
-    /// (no schedule to read); a pending abrupt stop is predicted (its one cycle, then rest).
+    /// A smooth stop is predicted too (it is laid out as jerk changes when it is given), except
+    /// from the states it then decides one cycle at a time (`None`; none from a move); a
+    /// pending abrupt stop is predicted (its one cycle, then rest).
     ///
     /// ```
     /// use profilegen::format::mc1451a::{Jerk, MaxVelocity, ScurveAcceleration};
@@ -45,15 +46,18 @@ impl SCurve {
             }
         };
         match self.motion {
-            Motion::Stopping => return None,
             // Its one cycle (velocity zero, position held), then rest.
             Motion::AbruptPending => {
                 push(Piece::constant(0, 1));
                 push(Piece::constant(0, 0));
             }
             Motion::Rest => push(Piece::constant(velocity, 0)),
-            Motion::Planned if self.arrived() => push(Piece::constant(velocity, 0)),
-            Motion::Planned => {
+            Motion::Planned | Motion::Stopping if self.arrived() => {
+                push(Piece::constant(velocity, 0));
+            }
+            // A smooth stop decided cycle by cycle.
+            Motion::Stopping if self.next_change == SENTINEL => return None,
+            Motion::Planned | Motion::Stopping => {
                 // The run under way: the jerk for `countdown` more steps from the present
                 // acceleration — or, on the first step of a move started right after an abrupt
                 // stop, the plan from its start (that step's corrected jerk makes its
@@ -77,8 +81,13 @@ impl SCurve {
                     continues: false,
                 });
                 // Each later run continues from the state the closed forms lead to; the end
-                // marker, last, holds the rest for ever.
-                for index in next..self.schedule.len() {
+                // marker, last, holds the rest for ever (a smooth stop's is the arrays' last).
+                let end = if self.motion == Motion::Stopping {
+                    SENTINEL
+                } else {
+                    self.schedule.len()
+                };
+                for index in next..end {
                     let change = self.schedule.run(index);
                     push(Piece::jerk_run(change.jerk, change.hold));
                 }

@@ -248,6 +248,31 @@ impl Schedule {
         self.seal(&Placement::default(), direction);
     }
 
+    /// Writes `changes` (`(cycles held, jerk along the move)`, in order: a smooth stop's,
+    /// [`super::stop::lay_out`], at most [`MAX_CHANGES`] − 1) in the direction `direction` (±1)
+    /// at the end of the arrays, closed by an end marker in the last slot, and returns the index
+    /// of the first: a replay from there ends with the marker, and the index after it is
+    /// [`SENTINEL`]. The plan's own changes before them stay as they are unless the two overlap
+    /// ([`Self::fits_after`]); its summary and length are left as they are.
+    pub fn seal_at_end(&mut self, changes: &[(u64, i64)], direction: i64) -> usize {
+        let count = changes.len().min(MAX_CHANGES - 1);
+        let first = MAX_CHANGES - 1 - count;
+        for (index, &(hold, jerk)) in changes[..count].iter().enumerate() {
+            self.holds[first + index] = hold;
+            // |jerk| ≤ J < 2^31: within 32 bits.
+            self.jerks[first + index] = (jerk * direction) as i32;
+        }
+        self.holds[MAX_CHANGES - 1] = u64::MAX;
+        self.jerks[MAX_CHANGES - 1] = 0;
+        first
+    }
+
+    /// Whether `count` changes and an end marker fit after the plan's changes
+    /// ([`Self::seal_at_end`] then leaves them intact).
+    pub fn fits_after(&self, count: usize) -> bool {
+        self.len + count < MAX_CHANGES
+    }
+
     /// The runs of the sealed replay, `(cycles, jerk)` in order, the end marker left out.
     pub fn runs(&self) -> impl Iterator<Item = (u64, i64)> + '_ {
         let runs = self.len.saturating_sub(1);

@@ -174,6 +174,10 @@ const RUNS: usize = 16;
 /// common path needs no test of the phase (its count running out is the test).
 const ELSEWHERE: usize = RUNS - 1;
 
+/// A run of the per-cycle rule laid out for another generator ([`Trapezoidal::rule_runs`]):
+/// `(first velocity, change per cycle, cycles)`, I32F32 bits.
+pub(crate) type RuleRun = (i64, i64, u64);
+
 /// The runs of a plan while it is worked out, in order, empty ones left out. At most 13 (an
 /// abrupt stop's cycle, three slowing stages, two turning runs, the six of a plan and rest),
 /// below [`ELSEWHERE`].
@@ -574,6 +578,60 @@ impl Trapezoidal {
         let q = i128::from(((4 * m + 1).isqrt() - 1) / 2);
         let numerator = distance + deceleration * q * (q + 1) / 2;
         (numerator / (q + 1)) as i64
+    }
+
+    /// The runs the per-cycle rule takes from a state `distance` ahead (≥ 0, I32F32 bits)
+    /// moving at `velocity` (signed, positive toward the destination) to rest on the
+    /// destination, with the maximum velocity `max_velocity`, A = D = `rate` (≥ 1, any
+    /// integer: no 8.24 register behind it) and no starting velocity, as `(first velocity,
+    /// change per cycle, cycles)`, the last the rest run (`u64::MAX` cycles, its first the
+    /// cycle that arrives) — or `None` when no plan covers the state (see `Phase::Decide`).
+    ///
+    /// For the S-curve's smooth stop, which is this rule one derivative up: the distance is the
+    /// velocity left, the velocity the deceleration. The plan is worked out by a generator
+    /// standing for that profile, never stepped (the planning reads only its profile and
+    /// destination). Bounds: `distance` < 2^62, `velocity` and `max_velocity` < 2^33, `rate`
+    /// ≤ 2^31, so every product of the planning stays within its i128 (and 64-bit) width.
+    pub(crate) fn rule_runs(
+        distance: i64,
+        velocity: i64,
+        max_velocity: i64,
+        rate: i64,
+    ) -> Option<([RuleRun; ELSEWHERE], usize)> {
+        let parameters = TrapezoidalParameters {
+            destination: 0,
+            max_velocity: TargetVelocity::ZERO,
+            acceleration: Acceleration::ZERO,
+            deceleration: Acceleration::ZERO,
+            start_velocity: TargetVelocity::ZERO,
+        };
+        let planner = Self {
+            current: 0,
+            runs: [Run::NONE; RUNS],
+            state: State::at_rest(I32F32::ZERO),
+            phase: Phase::Run,
+            parameters,
+            profile: Profile {
+                max_velocity,
+                acceleration: rate,
+                deceleration: rate,
+                start_velocity: 0,
+            },
+            destination: 0,
+            abrupt_state: None,
+            abrupt_next: State::at_rest(I32F32::ZERO),
+            stop_slot: 0,
+            rest_slot: 0,
+        };
+        let mut layout = Layout::new();
+        if !planner.plan_into(&mut layout, distance.wrapping_neg(), velocity) {
+            return None;
+        }
+        let mut runs = [(0, 0, 0); ELSEWHERE];
+        for (to, run) in runs.iter_mut().zip(layout.runs()) {
+            *to = (run.next, run.increment, run.count);
+        }
+        Some((runs, layout.len))
     }
 
     /// The per-cycle decision from scratch, in the frame where the destination lies ahead
