@@ -339,10 +339,10 @@ fn pending_abrupt_stops() {
     for (n, state) in states.iter().enumerate() {
         assert_eq!(future.state_at(n as u64 + 1), *state);
     }
-    // A smooth stop is decided cycle by cycle: not predicted.
-    let mut smooth = axis.clone();
-    smooth.states().take(3).for_each(drop);
-    assert!(smooth.predict().is_some(), "at rest after the abrupt stop");
+    // Past the abrupt stop the axis rests, and rest is predicted.
+    let mut rested = axis.clone();
+    rested.states().take(3).for_each(drop);
+    assert!(rested.predict().is_some(), "at rest after the abrupt stop");
 }
 
 proptest! {
