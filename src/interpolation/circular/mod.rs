@@ -128,9 +128,10 @@ pub struct Arc {
     scaled_radius_squared: u64,
     /// Half that shift, ≤ 30.
     half_shift: u32,
-    /// Per traversal piece mod 8: whether X carries the long coordinate, and the signs of X and
-    /// Y (the octant's row of `FRAMES` for this direction).
-    frames: [(bool, [i32; 2]); 8],
+    /// Per traversal piece mod 8, the octant's row of `FRAMES` for this direction as the
+    /// coefficients of X = ±long or ±short and Y likewise: `[long→X, short→X, long→Y, short→Y]`,
+    /// each −1, 0 or 1 (one of each pair 0), so a cycle maps without a branch (two `mla` per axis).
+    frames: [[i32; 4]; 8],
     /// m: the last short coordinate of an octant; the steps of an inbound octant.
     inbound_steps: u32,
     /// D = f(m): the steps of an outbound octant.
@@ -188,7 +189,11 @@ impl Arc {
         let frames = core::array::from_fn(|piece| {
             let octant = if counter_clockwise { piece } else { 7 - piece };
             let (long_is_x, sign_x, sign_y) = FRAMES[octant];
-            (long_is_x, [sign_x, sign_y])
+            if long_is_x {
+                [sign_x, 0, 0, sign_y]
+            } else {
+                [0, sign_x, sign_y, 0]
+            }
         });
         let mut arc = Self {
             centre,

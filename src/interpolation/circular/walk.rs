@@ -151,18 +151,18 @@ impl ArcWalk {
         // 0 … the piece's steps (the end of a piece is the next one's start): below 2³¹.
         let offset = (at - self.piece_start) as u32;
         let (long, short) = self.arc.long_and_short(self.piece % 2 == 0, offset);
-        let (long_is_x, signs) = self.arc.frames[(self.piece % 8) as usize];
+        let [long_x, short_x, long_y, short_y] = self.arc.frames[(self.piece % 8) as usize];
         // Both below 2³¹ (the reach was checked when the arc was built): the casts are exact.
         let (long, short) = (long as i32, short as i32);
-        let (x, y) = if long_is_x {
-            (long, short)
-        } else {
-            (short, long)
-        };
-        // Within i32: the reach of the circle was checked when the arc was built.
+        // Within i32: the reach of the circle was checked when the arc was built (one of each
+        // pair of coefficients is 0, the other ±1).
         self.position = [
-            (signs[0] * x).wrapping_add(self.arc.centre[0]),
-            (signs[1] * y).wrapping_add(self.arc.centre[1]),
+            self.arc.centre[0]
+                .wrapping_add(long_x.wrapping_mul(long))
+                .wrapping_add(short_x.wrapping_mul(short)),
+            self.arc.centre[1]
+                .wrapping_add(long_y.wrapping_mul(long))
+                .wrapping_add(short_y.wrapping_mul(short)),
         ];
         self.position
     }
