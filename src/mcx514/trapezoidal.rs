@@ -70,8 +70,10 @@ enum Phase {
     Accelerating,
     /// At DV (deceleration disabled: from the first cycle).
     Cruising,
-    /// Slowing down by DC to SV, then creeping at SV.
+    /// Slowing down by DC toward SV.
     Decelerating,
+    /// At SV after the deceleration (the chip's creep), until the finish point or a stop.
+    Creeping,
 }
 
 /// The MCX514's trapezoidal acceleration/deceleration on the driving axis (SPEC §12.2), cycle by
@@ -240,8 +242,8 @@ impl Mcx514Trapezoidal {
         });
         self.profile.finish = finish;
         self.profile.manual_point = point;
-        // Decelerating, the trigger stays i64::MAX.
-        if self.phase != Phase::Decelerating {
+        // Decelerating or creeping, the trigger stays i64::MAX.
+        if !matches!(self.phase, Phase::Decelerating | Phase::Creeping) {
             self.trigger = point;
         }
         self.complete = finish == position;
@@ -270,18 +272,33 @@ impl Mcx514Trapezoidal {
                 drive
             }
             Phase::Decelerating => {
-                let initial = self.profile.initial;
-                if self.stopping && velocity <= initial {
-                    // A smooth stop ends at SV, as the chip's decelerating stop does.
-                    self.complete = true;
-                    return 0;
+                // Down by DC. No overflow: 0 ≤ velocity and DC < 2⁶³ in raw bits.
+                let next = velocity - self.profile.deceleration;
+                if next > self.profile.initial {
+                    // Above SV + DC before: on the ramp (a smooth stop has nothing to end yet).
+                    return next;
                 }
-                // Down by DC, never below SV (the creep). No overflow: 0 ≤ velocity and
-                // DC < 2⁶³ in raw bits.
-                (velocity - self.profile.deceleration).max(initial)
+                self.reach_initial(velocity)
             }
+            // max(SV − DC, SV) = SV, cycle after cycle.
+            Phase::Creeping => velocity,
             Phase::Start => self.start(),
         }
+    }
+
+    /// The deceleration's last step, down to SV (never below: the creep), or, with a smooth stop,
+    /// the stop from at or below SV, as the chip's decelerating stop ends.
+    #[cold]
+    fn reach_initial(&mut self, velocity: i64) -> i64 {
+        let initial = self.profile.initial;
+        if self.stopping && velocity <= initial {
+            self.complete = true;
+            return 0;
+        }
+        if !self.stopping {
+            self.phase = Phase::Creeping;
+        }
+        initial
     }
 
     /// The cycle that begins at or past the trigger starts the deceleration; nothing triggers
