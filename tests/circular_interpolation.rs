@@ -487,3 +487,66 @@ fn a_walk_jumps_back_and_forth_in_o1() {
         }
     }
 }
+
+/// A profile that drives a walk through scripted whole positions (the integer parts a speed
+/// profile's positions would have), forward and back, inside and outside the arc.
+fn scripted_positions(steps: u64, seed: u64) -> Vec<i32> {
+    let mut state = seed | 1;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    let last = steps.min(i32::MAX as u64) as i64;
+    let mut whole = 0i64;
+    let mut out = Vec::new();
+    for _ in 0..400 {
+        whole = match next() % 16 {
+            // Mostly forward by up to a sixteenth of the arc (crossing octants), sometimes back.
+            0..=10 => whole + (next() % (last as u64 / 16 + 2)) as i64,
+            11 | 12 => whole - (next() % (last as u64 / 32 + 2)) as i64,
+            // Just past either end, far past them, and the ends themselves.
+            13 => [-1, last + 1, i64::from(i32::MIN), i64::from(i32::MAX)][(next() % 4) as usize],
+            14 => [0, last][(next() % 2) as usize],
+            _ => (next() % (last as u64 + 1)) as i64,
+        }
+        .clamp(i64::from(i32::MIN), i64::from(i32::MAX));
+        out.push(whole as i32);
+    }
+    out
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// The per-cycle path (`ArcWalk::advance_to_whole`, which a driven arc takes every cycle,
+    /// keeping its octant from the cycle before) lands on the same point and octant as
+    /// `Arc::position_at` / `Arc::octant_at` (a fresh walk finding its octant from the start)
+    /// on every cycle of random arcs, whole positions outside the arc holding the nearer end.
+    #[test]
+    fn the_per_cycle_path_is_position_at_on_every_cycle(
+        (radius, angle) in radius_and_angle(),
+        span in 0.0f64..std::f64::consts::TAU,
+        direction in direction(),
+        seed in any::<u64>(),
+    ) {
+        let centre = centre_for(radius, angle);
+        prop_assume!(centre != [0, 0]);
+        let r2 = i128::from(centre[0]).pow(2) + i128::from(centre[1]).pow(2);
+        let start_angle = (-f64::from(centre[1])).atan2(-f64::from(centre[0]));
+        let sign = if direction == Direction::CounterClockwise { 1.0 } else { -1.0 };
+        let target = nearest_at_angle(r2, start_angle + sign * span);
+        let finish = [target[0] as i32 + centre[0], target[1] as i32 + centre[1]];
+        let arc = Arc::from_pulses(centre, finish, direction).unwrap();
+        let mut walk = arc.walk();
+        for whole in scripted_positions(arc.steps(), seed) {
+            let step = u64::try_from(whole).unwrap_or(0).min(arc.steps());
+            let point = walk.advance_to_whole(whole);
+            prop_assert_eq!(walk.step(), step, "whole {}", whole);
+            prop_assert_eq!(point, arc.position_at(step), "whole {}", whole);
+            prop_assert_eq!(walk.current_position(), point);
+            prop_assert_eq!(walk.octant(), arc.octant_at(step), "whole {}", whole);
+        }
+    }
+}

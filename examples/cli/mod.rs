@@ -165,8 +165,9 @@ impl Options {
 pub enum Request {
     Help,
     Run(Options),
-    /// The `mcx514` mode: an interpolation, with options of its own.
-    Mcx514(mcx514::Options),
+    /// The `mcx514` mode: an interpolation, with options of its own (boxed: its geometry, an
+    /// arc with its per-octant tables, is much larger than the other modes' options).
+    Mcx514(Box<mcx514::Options>),
 }
 
 /// A one-line message about the command line.
@@ -312,7 +313,9 @@ pub fn parse(program: Program, arguments: Vec<OsString>) -> Result<Request, Usag
     let mode = match mode
         .ok_or("MODE: missing (velocity, trapezoidal, scurve or mcx514; see --help)".to_owned())?
     {
-        ModeWord::Mcx514 => return mcx514::parse(program, words).map(Request::Mcx514),
+        ModeWord::Mcx514 => {
+            return mcx514::parse(program, words).map(|options| Request::Mcx514(Box::new(options)))
+        }
         ModeWord::Profile(mode) => mode,
     };
     let mut options = Options {

@@ -630,14 +630,15 @@ pub unsafe extern "C" fn probe_circle_setup(words: *const u32) -> u32 {
 }
 
 /// One cycle of a circle: the profile's step and the arc's jump to the step it reached (what
-/// `CircularInterpolation::step` does), both axes stored with volatile writes as `output` does
+/// `CircularInterpolation::step` does, `ArcWalk::advance_to_whole`), both axes stored with volatile writes as `output` does
 /// for the line; returns the driving position.
 #[inline(always)]
 fn circle_step<G: ProfileGenerator>(circle: &mut Circle<G>) -> i64 {
     let driving = circle.profile.step();
-    // The whole steps: the position's integer part, never negative for these profiles.
-    let steps = (driving.position.to_bits() >> 32).max(0) as u64;
-    let axes = circle.walk.advance_to(steps);
+    // The whole steps: the position's integer part (an i32), clamped by the walk.
+    let axes = circle
+        .walk
+        .advance_to_whole((driving.position.to_bits() >> 32) as i32);
     let out = LINE_AXES.0.get().cast::<i32>();
     for (i, axis) in axes.into_iter().enumerate() {
         // SAFETY: aligned words of a static (three, two used); single-threaded.

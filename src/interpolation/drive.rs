@@ -76,7 +76,10 @@ impl<G: ProfileGenerator + ?Sized, const N: usize> LinearInterpolation<'_, G, N>
     /// Advances the profile one cycle and moves every axis to where it leads.
     pub fn step(&mut self) -> InterpolationState<N> {
         let driving = self.generator.step();
-        let axes = self.walk.advance_to(steps_of(&driving));
+        // The integer part of an I32F32 (a floor) is an i32: the cast keeps every bit.
+        let axes = self
+            .walk
+            .advance_to_whole((driving.position.to_bits() >> 32) as i32);
         InterpolationState {
             driving,
             step: self.walk.step(),

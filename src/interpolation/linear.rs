@@ -18,7 +18,7 @@
 //!
 //! # Evaluated without dividing
 //! A cycle may take any number of steps, so the rule is evaluated at the step reached, in O(1)
-//! per axis, with no division and no loop: two 32×32→64 multiply-accumulates per axis against
+//! per axis, with no division and no loop: two 32×32→64 multiplications per axis against
 //! constants of the line (see [`Line::position_at`] for why that is the rule, exactly).
 //! [`Line::position_by_division`] evaluates the rule as written, the yardstick the tests hold
 //! the fast form to, bit for bit.
@@ -45,15 +45,16 @@ use crate::format::mcx514::FinishPoint;
 use crate::Error;
 
 /// One axis's constants for the division-free evaluation (see [`Line::position_at`]): posᵢ(k)
-/// is the high word of `2k·slope + offset`, a signed 96-bit value, in 32-bit pieces.
+/// is k less the top word of `2k·slope + offset·2³²`, a 96-bit unsigned value, in 32-bit pieces.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 struct Axis {
-    /// Low word of the slope Fᵢ = ⌊Δᵢ·2⁶³/L⌋ (an i64; Δᵢ = L saturates to 2⁶³ − 1).
+    /// Low word of the biased slope Fᵢ + 2⁶³, Fᵢ = ⌊Δᵢ·2⁶³/L⌋ (an i64; Δᵢ = L saturates to
+    /// 2⁶³ − 1).
     slope_low: u32,
-    /// High word of the slope, signed.
-    slope_high: i32,
-    /// The offset Gᵢ = ⌈hᵢ·2⁶⁴/L⌉ + 2³² (a u64 < 2⁶⁴, with hᵢ below), whole.
-    offset: u64,
+    /// High word of the biased slope (the signed high word of Fᵢ plus 2³¹).
+    slope_high: u32,
+    /// The offset's middle word Gᵢ = ⌈hᵢ·2³²/L⌉ + 1 (with hᵢ below; ≤ 2³¹ + 1), weighted 2³².
+    offset: u32,
 }
 
 /// A straight line from the origin to a finish point on N axes (2 ≤ N ≤ 4), in pulses: the
@@ -122,36 +123,45 @@ impl<const N: usize> Line<N> {
 
     /// Every axis's position after `step` steps, in pulses relative to the start; steps past the
     /// end ([`Self::steps`]) stay on the finish point. O(1): per axis two 32×32→64
-    /// multiply-accumulates, no division, no branch — what a cycle that takes many steps calls.
+    /// multiplications, no division, no branch — what a cycle that takes many steps calls.
     ///
     /// # Why it is the rule, exactly
     /// For Δᵢ < 0, −⌊(k·|Δᵢ| + h)/L⌋ = ⌊(k·Δᵢ + L − 1 − h)/L⌋ (write k·|Δᵢ| + h = q·L + r with
     /// 0 ≤ r < L: the right side is ⌊(−q·L + L − 1 − r)/L⌋ = −q). So with hᵢ = h = ⌊L/2⌋ for
     /// Δᵢ ≥ 0 and L − 1 − h otherwise, posᵢ(k) = ⌊Xᵢ⌋, Xᵢ = (k·Δᵢ + hᵢ)/L, for both signs.
     ///
-    /// Per line, Fᵢ = ⌊Δᵢ·2⁶³/L⌋ (an i64; for Δᵢ = L, 2⁶³ − 1) and Gᵢ = ⌈hᵢ·2⁶⁴/L⌉ + 2³² (a
-    /// u64: hᵢ ≤ L/2). Then Yᵢ = (2k·Fᵢ + Gᵢ)/2⁶⁴ exceeds Xᵢ by δ with
-    /// 2⁻³² − 2k/2⁶⁴ < δ < 2⁻³² + 2⁻⁶⁴: the slope's rounding loses less than 2k/2⁶⁴ < 2⁻³³
-    /// (k ≤ L < 2³⁰), the offset adds 2⁻³² and less than 2⁻⁶⁴ more. So 0 < δ < 1/L (L < 2³⁰),
-    /// and since Xᵢ's fraction is a multiple of 1/L, at most 1 − 1/L, ⌊Yᵢ⌋ = ⌊Xᵢ⌋.
+    /// Per line, Fᵢ = ⌊Δᵢ·2⁶³/L⌋ (an i64; for Δᵢ = L, 2⁶³ − 1) and Gᵢ = ⌈hᵢ·2³²/L⌉ + 1 (hᵢ ≤ L/2,
+    /// so Gᵢ ≤ 2³¹ + 1). Then Yᵢ = (2k·Fᵢ + Gᵢ·2³²)/2⁶⁴ exceeds Xᵢ by δ with
+    /// 2⁻³² − 2k/2⁶⁴ < δ < 2⁻³¹: the slope's rounding loses less than 2k/2⁶⁴ < 2⁻³³
+    /// (k ≤ L < 2³⁰), the offset adds at least 2⁻³² and less than 2·2⁻³². So 0 < δ < 2⁻³⁰ < 1/L
+    /// (L < 2³⁰), and since Xᵢ's fraction is a multiple of 1/L, at most 1 − 1/L, ⌊Yᵢ⌋ = ⌊Xᵢ⌋.
     ///
-    /// ⌊Yᵢ⌋ in 32-bit pieces (2k < 2³¹): P = Gᵢ + 2k·(Fᵢ mod 2³²), unsigned, below 2⁶⁴
-    /// (Gᵢ ≤ 2⁶³ + 2³² + 1 and the product < 2⁶³ − 2³³); then ⌊Yᵢ⌋ is the high word of the
-    /// signed ⌊P/2³²⌋ + 2k·⌊Fᵢ/2³²⌋ (the low word of P cannot carry into it). On a Cortex-M4
-    /// that is one `umlal` and one `smlal`.
+    /// ⌊Yᵢ⌋ in unsigned 32-bit pieces: with the slope biased to F′ = Fᵢ + 2⁶³ ∈ [0, 2⁶⁴),
+    /// 2k·F′ = 2k·Fᵢ + k·2⁶⁴, so ⌊Yᵢ⌋ = ⌊(2k·F′ + Gᵢ·2³²)/2⁶⁴⌋ − k. That quotient is the high
+    /// word of 2k·⌊F′/2³²⌋ + Gᵢ + c, c the high word of 2k·(F′ mod 2³²) (the low words cannot
+    /// carry into it; the sum is below 2⁶⁴, as for any u32·u32 + u32 + u32). On a Cortex-M4
+    /// that is one `umull`, one `umaal` and a subtraction, modulo 2³² (the result is an i32).
     ///
     /// [`Self::position_by_division`] is the rule as written; the tests hold the two equal.
     #[inline]
     pub fn position_at(&self, step: u32) -> [i32; N] {
-        // ≤ L < 2³⁰, so 2k < 2³¹ fits both u32 and i32.
-        let twice = step.min(self.steps) << 1;
+        // ≤ L < 2³⁰, so 2k < 2³¹.
+        let step = step.min(self.steps);
+        self.at_clamped(step)
+    }
+
+    /// [`Self::position_at`] for `step` ≤ L (the caller's contract; a larger step would not
+    /// stay on the finish point).
+    #[inline(always)]
+    fn at_clamped(&self, step: u32) -> [i32; N] {
+        let twice = u64::from(step << 1);
         self.axes.map(|axis| {
-            // u64, no overflow (see above): the offset plus the slope's low word times 2k.
-            let partial = axis.offset + u64::from(twice) * u64::from(axis.slope_low);
-            // i64: ⌊P/2³²⌋ < 2³² plus |2k·⌊F/2³²⌋| < 2⁶², exact. Its high word is the position.
-            let whole =
-                (partial >> 32) as i64 + i64::from(twice as i32) * i64::from(axis.slope_high);
-            (whole >> 32) as i32
+            // c: the high word of 2k·(F′ mod 2³²).
+            let carry = (twice * u64::from(axis.slope_low)) >> 32;
+            // ≤ (2³² − 1)² + 2·(2³² − 1) < 2⁶⁴: no overflow (one `umaal`).
+            let top = twice * u64::from(axis.slope_high) + u64::from(axis.offset) + carry;
+            // Modulo 2³²: the biased quotient less k is the position (an i32).
+            ((top >> 32) as u32).wrapping_sub(step) as i32
         })
     }
 
@@ -190,29 +200,28 @@ impl<const N: usize> Line<N> {
 
 impl Axis {
     /// The constants of an axis with finish `delta` on a line of `steps` (see
-    /// [`Line::position_at`]); all zero for an empty line (every position is then 0). Computed
-    /// once per line, in i128 (never on the per-cycle path).
+    /// [`Line::position_at`]); for an empty line, a zero slope and offset (every position is
+    /// then 0). Computed once per line, in i128 (never on the per-cycle path).
     fn new(delta: i32, steps: u32) -> Self {
-        if steps == 0 {
-            return Self {
-                slope_low: 0,
-                slope_high: 0,
-                offset: 0,
-            };
-        }
-        let length = i128::from(steps);
-        // ⌊Δ·2⁶³/L⌋ ∈ [−2⁶³, 2⁶³]; the one value past i64 (Δ = L) saturates to 2⁶³ − 1.
-        let slope = (i128::from(delta) << 63).div_euclid(length);
-        let slope = i64::try_from(slope).unwrap_or(i64::MAX);
-        let half = i128::from(steps / 2);
-        let offset_numerator = if delta < 0 { length - 1 - half } else { half };
-        // ⌈hᵢ·2⁶⁴/L⌉ + 2³²: hᵢ ≤ L/2, so at most 2⁶³ + 2³² + 1, a u64.
-        let offset = ((offset_numerator << 64) + length - 1) / length + (1 << 32);
+        let (slope, offset) = if steps == 0 {
+            (0, 0)
+        } else {
+            let length = i128::from(steps);
+            // ⌊Δ·2⁶³/L⌋ ∈ [−2⁶³, 2⁶³]; the one value past i64 (Δ = L) saturates to 2⁶³ − 1.
+            let slope = (i128::from(delta) << 63).div_euclid(length);
+            let slope = i64::try_from(slope).unwrap_or(i64::MAX);
+            let half = i128::from(steps / 2);
+            let offset_numerator = if delta < 0 { length - 1 - half } else { half };
+            // ⌈hᵢ·2³²/L⌉ + 1: hᵢ ≤ L/2, so at most 2³¹ + 1, a u32.
+            let offset = ((offset_numerator << 32) + length - 1) / length + 1;
+            (slope, offset as u32)
+        };
+        // F′ = F + 2⁶³ ∈ [0, 2⁶⁴): the two's-complement bits of F with the top bit flipped.
+        let biased = (slope as u64) ^ (1 << 63);
         Self {
-            // The two's-complement pieces of the slope: low word unsigned, high word signed.
-            slope_low: slope as u32,
-            slope_high: (slope >> 32) as i32,
-            offset: offset as u64,
+            slope_low: biased as u32,
+            slope_high: (biased >> 32) as u32,
+            offset,
         }
     }
 }
@@ -257,7 +266,32 @@ impl<const N: usize> Walk<N> {
     #[inline]
     pub fn advance_to(&mut self, step: u32) -> [i32; N] {
         self.step = step.min(self.line.steps);
-        self.line.position_at(self.step)
+        self.line.at_clamped(self.step)
+    }
+
+    /// Moves to the step a driving position's integer part `whole` names (a floor, any i32):
+    /// below 0 means the start, past the end the end. One unsigned comparison on the way every
+    /// cycle within the line takes.
+    #[inline]
+    pub(super) fn advance_to_whole(&mut self, whole: i32) -> [i32; N] {
+        // Within 0 … L the bits are the step; a negative `whole` is ≥ 2³¹ as a u32, past L.
+        let step = if whole as u32 <= self.line.steps {
+            whole as u32
+        } else {
+            clamp_outside(whole, self.line.steps)
+        };
+        self.step = step;
+        self.line.at_clamped(step)
+    }
+}
+
+/// A driving position's integer part `whole` outside 0 … `steps`, held at the nearer end.
+#[cold]
+fn clamp_outside(whole: i32, steps: u32) -> u32 {
+    if whole < 0 {
+        0
+    } else {
+        steps
     }
 }
 
@@ -281,3 +315,35 @@ impl<const N: usize> Iterator for Walk<N> {
 impl<const N: usize> ExactSizeIterator for Walk<N> {}
 
 impl<const N: usize> core::iter::FusedIterator for Walk<N> {}
+
+#[cfg(test)]
+mod tests {
+    use super::Line;
+
+    /// A driving position's integer part outside 0 … L holds the axes at the nearer end, and one
+    /// inside is the step itself (the rule by division is the yardstick).
+    #[test]
+    fn whole_positions_outside_the_line_hold_the_nearer_end() {
+        let line = Line::from_pulses([-20_000, 30_000, -50_000]).unwrap();
+        let mut walk = line.walk();
+        for whole in [i32::MIN, -50_001, -1] {
+            assert_eq!(walk.advance_to_whole(whole), [0, 0, 0], "{whole}");
+            assert_eq!(walk.step(), 0);
+        }
+        for whole in [50_000, 50_001, i32::MAX] {
+            assert_eq!(
+                walk.advance_to_whole(whole),
+                [-20_000, 30_000, -50_000],
+                "{whole}"
+            );
+            assert_eq!(walk.step(), 50_000);
+        }
+        for whole in [0, 1, 25_000, 49_999] {
+            assert_eq!(
+                walk.advance_to_whole(whole),
+                line.position_by_division(whole as u32)
+            );
+            assert_eq!(walk.step(), whole as u32);
+        }
+    }
+}

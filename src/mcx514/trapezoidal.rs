@@ -48,6 +48,9 @@ struct PerCycle {
     drive: i64,
     acceleration: i64,
     deceleration: i64,
+    /// DV − AC (may be negative): a cycle that begins below it speeds up by AC and stays below
+    /// DV, so the sum is never formed where it could pass i64 (AC alone can come near 2⁶³ raw).
+    below_last_speed_up: i64,
     /// The manual deceleration point, raw I32F32 whole pulses, held below 2³¹ pulses (every
     /// point from 2³⁰ on is past every finish point, so never reached); `i64::MAX` unless manual.
     manual_point: i64,
@@ -57,7 +60,8 @@ struct PerCycle {
     largest_drop: i64,
 }
 
-/// Where the move is; each phase has its own one-comparison test for what ends it.
+/// Where the move is; each phase has its own one-comparison test for what ends it. The trigger
+/// is `i64::MAX` while decelerating, so the test for deceleration needs no phase.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Phase {
     /// At rest before the first cycle.
@@ -66,8 +70,10 @@ enum Phase {
     Accelerating,
     /// At DV (deceleration disabled: from the first cycle).
     Cruising,
-    /// Slowing down by DC to SV, then creeping at SV.
+    /// Slowing down by DC toward SV.
     Decelerating,
+    /// At SV after the deceleration (the chip's creep), until the finish point or a stop.
+    Creeping,
 }
 
 /// The MCX514's trapezoidal acceleration/deceleration on the driving axis (SPEC §12.2), cycle by
@@ -121,7 +127,8 @@ pub struct Mcx514Trapezoidal {
     /// The position (raw I32F32) at or past which a cycle that begins there starts to
     /// decelerate: the manual point; with automatic deceleration, while speeding up, half the
     /// finish point (rounded up: the pulses left, finish − p, are then ≤ the pulses output while
-    /// speeding up, p), and once at DV, the finish point less those pulses. `i64::MAX`: never.
+    /// speeding up, p), and once at DV, the finish point less those pulses. `i64::MAX`: never,
+    /// and while decelerating (nothing to start then).
     trigger: i64,
     /// A smooth stop was commanded: decelerate to SV, then stop.
     stopping: bool,
@@ -188,6 +195,7 @@ impl Mcx514Trapezoidal {
             drive,
             acceleration,
             deceleration,
+            below_last_speed_up: drive - acceleration,
             manual_point,
             automatic,
             disabled: parameters.deceleration_mode == DecelerationMode::Disabled,
@@ -234,7 +242,8 @@ impl Mcx514Trapezoidal {
         });
         self.profile.finish = finish;
         self.profile.manual_point = point;
-        if self.phase != Phase::Decelerating {
+        // Decelerating or creeping, the trigger stays i64::MAX.
+        if !matches!(self.phase, Phase::Decelerating | Phase::Creeping) {
             self.trigger = point;
         }
         self.complete = finish == position;
@@ -247,35 +256,57 @@ impl Mcx514Trapezoidal {
     /// once and stops from SV.
     #[inline]
     fn next_velocity(&mut self, position: i64, velocity: i64) -> i64 {
-        if self.phase != Phase::Decelerating && position >= self.trigger {
-            self.phase = Phase::Decelerating;
+        if position >= self.trigger {
+            self.decelerate();
         }
         match self.phase {
             Phase::Cruising => velocity,
             Phase::Accelerating => {
-                // Saturating: at a cycle of seconds AC alone is near 2³¹ pulses/cycle², and with
-                // the velocity it can pass i64 in raw bits; DV caps the sum anyway.
-                let next = velocity.saturating_add(self.profile.acceleration);
-                let drive = self.profile.drive;
-                if next < drive {
-                    return next;
+                // velocity + AC < DV exactly when velocity < DV − AC (0 ≤ velocity): the sum is
+                // formed only below DV, so it never passes i64 (AC alone can near 2⁶³ raw).
+                if velocity < self.profile.below_last_speed_up {
+                    return velocity + self.profile.acceleration;
                 }
+                let drive = self.profile.drive;
                 self.cruise(position + drive);
                 drive
             }
             Phase::Decelerating => {
-                let initial = self.profile.initial;
-                if self.stopping && velocity <= initial {
-                    // A smooth stop ends at SV, as the chip's decelerating stop does.
-                    self.complete = true;
-                    return 0;
+                // Down by DC. No overflow: 0 ≤ velocity and DC < 2⁶³ in raw bits.
+                let next = velocity - self.profile.deceleration;
+                if next > self.profile.initial {
+                    // Above SV + DC before: on the ramp (a smooth stop has nothing to end yet).
+                    return next;
                 }
-                // Down by DC, never below SV (the creep). No overflow: 0 ≤ velocity and
-                // DC < 2⁶³ in raw bits.
-                (velocity - self.profile.deceleration).max(initial)
+                self.reach_initial(velocity)
             }
+            // max(SV − DC, SV) = SV, cycle after cycle.
+            Phase::Creeping => velocity,
             Phase::Start => self.start(),
         }
+    }
+
+    /// The deceleration's last step, down to SV (never below: the creep), or, with a smooth stop,
+    /// the stop from at or below SV, as the chip's decelerating stop ends.
+    #[cold]
+    fn reach_initial(&mut self, velocity: i64) -> i64 {
+        let initial = self.profile.initial;
+        if self.stopping && velocity <= initial {
+            self.complete = true;
+            return 0;
+        }
+        if !self.stopping {
+            self.phase = Phase::Creeping;
+        }
+        initial
+    }
+
+    /// The cycle that begins at or past the trigger starts the deceleration; nothing triggers
+    /// again.
+    #[cold]
+    fn decelerate(&mut self) {
+        self.phase = Phase::Decelerating;
+        self.trigger = i64::MAX;
     }
 
     /// The first cycle: SV at once (DV with deceleration disabled).
@@ -344,7 +375,7 @@ impl ProfileGenerator for Mcx514Trapezoidal {
         match kind {
             StopKind::Smooth => {
                 self.stopping = true;
-                self.phase = Phase::Decelerating;
+                self.decelerate();
             }
             StopKind::Abrupt => self.complete = true,
         }

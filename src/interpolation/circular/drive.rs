@@ -156,7 +156,10 @@ impl<G: ProfileGenerator + ?Sized> CircularInterpolation<'_, G> {
     /// Advances the profile one cycle and moves both axes to where it leads.
     pub fn step(&mut self) -> CircleState {
         let driving = self.generator.step();
-        let axes = self.walk.advance_to(u64::from(steps_of(&driving)));
+        // The integer part of an I32F32 (a floor) is an i32: the cast keeps every bit.
+        let axes = self
+            .walk
+            .advance_to_whole((driving.position.to_bits() >> 32) as i32);
         CircleState {
             driving,
             step: self.walk.step(),

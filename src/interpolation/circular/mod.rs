@@ -65,7 +65,7 @@ pub use walk::ArcWalk;
 
 use crate::format::mcx514::{Centre, FinishPoint};
 use crate::{Error, Range};
-use sqrt::{round_sqrt, round_sqrt_shifted, shift_for};
+use sqrt::{isqrt_wide, round_sqrt, round_with_low_word, shift_for};
 
 /// Which way round an arc goes, seen with X to the right and Y up.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -123,11 +123,15 @@ pub struct Arc {
     end: [i32; 2],
     /// R² = cx² + cy² < 2⁶¹.
     radius_squared: u64,
-    /// The even shift that puts R² into [2⁶⁰, 2⁶²) for the root (see `sqrt::shift_for`).
-    shift: u32,
-    /// Per traversal piece mod 8: whether X carries the long coordinate, and the signs of X and
-    /// Y (the octant's row of `FRAMES` for this direction).
-    frames: [(bool, [i32; 2]); 8],
+    /// R²·2^shift, with the even shift that puts it into [2⁶⁰, 2⁶²) for the root (see
+    /// `sqrt::shift_for`): each cycle's radicand is formed already in the root's range.
+    scaled_radius_squared: u64,
+    /// Half that shift, ≤ 30.
+    half_shift: u32,
+    /// Per traversal piece mod 8, the octant's row of `FRAMES` for this direction as the
+    /// coefficients of X = ±long or ±short and Y likewise: `[long→X, short→X, long→Y, short→Y]`,
+    /// each −1, 0 or 1 (one of each pair 0), so a cycle maps without a branch (two `mla` per axis).
+    frames: [[i32; 4]; 8],
     /// m: the last short coordinate of an octant; the steps of an inbound octant.
     inbound_steps: u32,
     /// D = f(m): the steps of an outbound octant.
@@ -185,14 +189,19 @@ impl Arc {
         let frames = core::array::from_fn(|piece| {
             let octant = if counter_clockwise { piece } else { 7 - piece };
             let (long_is_x, sign_x, sign_y) = FRAMES[octant];
-            (long_is_x, [sign_x, sign_y])
+            if long_is_x {
+                [sign_x, 0, 0, sign_y]
+            } else {
+                [0, sign_x, sign_y, 0]
+            }
         });
         let mut arc = Self {
             centre,
             finish,
             end: [0, 0],
             radius_squared,
-            shift: shift_for(radius_squared),
+            scaled_radius_squared: radius_squared << shift_for(radius_squared),
+            half_shift: shift_for(radius_squared) / 2,
             frames,
             inbound_steps,
             outbound_steps,
@@ -382,10 +391,21 @@ impl Arc {
 
     /// f(s) = round(√(R² − s²)) for s ≤ m (so R²/4 ≤ R² − s² ≤ R², the root's domain with
     /// the circle's shift: m² < (R² + m)/2).
+    ///
+    /// In the root's range without a 64-bit shift: with t = s·2^(shift/2), the radicand
+    /// R²·2^shift − t² = (R² − s²)·2^shift lies in [2⁵⁸, 2⁶²) (R²·2^shift ∈ [2⁶⁰, 2⁶²) and
+    /// R² − s² ≥ R²/4), and t² ≤ R²·2^shift/2 + m·2^shift/2 < 2⁶² makes t < 2³¹ a u32. Its
+    /// floor root shifted back by shift/2 is ⌊√(R² − s²)⌋ (a floor of a floor). The rounding
+    /// needs n − q² ≤ 2q < 2³², so the low words give it (n the unscaled R² − s²).
     #[inline(always)]
     fn long_at(&self, short: u32) -> u32 {
-        let short = u64::from(short);
-        round_sqrt_shifted(self.radius_squared.wrapping_sub(short * short), self.shift)
+        let scaled_short = short << self.half_shift;
+        let radicand = self
+            .scaled_radius_squared
+            .wrapping_sub(u64::from(scaled_short) * u64::from(scaled_short));
+        let root = isqrt_wide(radicand) >> self.half_shift;
+        let low = (self.radius_squared as u32).wrapping_sub(short.wrapping_mul(short));
+        round_with_low_word(low, root)
     }
 
     /// The position on a full circle traversed from the direction's first octant's start.
@@ -454,4 +474,72 @@ fn last_short_coordinate(radius_squared: u64) -> u32 {
         short -= 1;
     }
     short
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::{Arc, Direction};
+
+    /// round(√n) for n < 2⁶², independently: u128's floor root, one more when n − q² > q.
+    fn nearest_root(n: u64) -> u32 {
+        let n = u128::from(n);
+        let q = n.isqrt();
+        (q + u128::from(n - q * q > q)) as u32
+    }
+
+    /// The long coordinate f(s) = round(√(R² − s²)) that each cycle evaluates (the radicand
+    /// formed scaled, the rounding from the low words) against u128 arithmetic, for centres
+    /// across the whole register range — R² up to 2⁶¹, where the root's shift is 0 — and short
+    /// coordinates at both ends of an octant and spread between.
+    #[test]
+    fn the_long_coordinate_is_the_nearest_root_at_every_scale() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            seed
+        };
+        let mut shift_zero = 0;
+        for round in 0..20_000 {
+            // Magnitudes log-uniform up to 2³⁰ − 1 (every other round: at least 2²⁹), every sign.
+            let large = round % 2 == 0;
+            let mut coordinate = || {
+                let bits = if large { 30 } else { next() % 31 };
+                let magnitude = (next() & ((1 << bits) - 1)).min((1 << 30) - 1) as i32;
+                let magnitude = if large {
+                    magnitude | (1 << 29)
+                } else {
+                    magnitude
+                };
+                if next() % 2 == 0 {
+                    magnitude
+                } else {
+                    -magnitude
+                }
+            };
+            let centre = [coordinate(), coordinate()];
+            if centre == [0, 0] {
+                continue;
+            }
+            let Ok(arc) = Arc::from_pulses(centre, [0, 0], Direction::CounterClockwise) else {
+                continue;
+            };
+            shift_zero += usize::from(arc.half_shift == 0);
+            let m = arc.inbound_steps;
+            let mut shorts = std::vec![0, 1, m / 2, m.saturating_sub(1), m];
+            shorts.extend((0..8).map(|_| (next() % (u64::from(m) + 1)) as u32));
+            for short in shorts.into_iter().filter(|&s| s <= m) {
+                let n = arc.radius_squared - u64::from(short).pow(2);
+                assert_eq!(
+                    arc.long_at(short),
+                    nearest_root(n),
+                    "centre {centre:?}, s = {short} (round {round})"
+                );
+            }
+        }
+        // The largest circles (R² ≥ 2⁶⁰) were among them.
+        assert!(shift_zero > 100, "{shift_zero} circles with shift 0");
+    }
 }

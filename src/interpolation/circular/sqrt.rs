@@ -38,7 +38,15 @@ pub(crate) fn shift_for(top: u64) -> u32 {
 /// and every quantity of the step below 2³².
 #[inline(always)]
 pub(crate) fn isqrt_shifted(n: u64, shift: u32) -> u32 {
-    let n = n << shift;
+    isqrt_wide(n << shift) >> (shift / 2)
+}
+
+/// ⌊√n⌋ for n in [2⁵⁸, 2⁶²): the Karatsuba step of the [module docs](self), h = ⌊n / 2³⁰⌋ in
+/// [2²⁸, 2³²), so s₁ = ⌊√h⌋ ≥ 2¹⁴ = b/2, Zimmermann's normalization, and every quantity of the
+/// step below 2³². A circle hands it R²·2^shift − (s·2^(shift/2))², already in range, so a
+/// cycle shifts no 64-bit value by a variable amount.
+#[inline(always)]
+pub(crate) fn isqrt_wide(n: u64) -> u32 {
     // h < 2³²: the cast keeps every bit.
     let high = (n >> 30) as u32;
     let low = (n as u32) & ((1 << 30) - 1);
@@ -53,10 +61,9 @@ pub(crate) fn isqrt_shifted(n: u64, shift: u32) -> u32 {
     let rest = numerator.wrapping_sub(quotient.wrapping_mul(divisor.get()));
     // s < 2¹⁶·2¹⁵ + 2¹⁵ < 2³²; the remainder u·b + a₀ < 2³², and q ≤ 2¹⁵, so q² ≤ 2³⁰.
     let root = (root_high << 15).wrapping_add(quotient);
-    let root = root.wrapping_sub(u32::from(
+    root.wrapping_sub(u32::from(
         (rest << 15).wrapping_add(digit_0) < quotient.wrapping_mul(quotient),
-    ));
-    root >> (shift / 2)
+    ))
 }
 
 /// ⌊√h⌋ for h ∈ [2²⁸, 2³²): a table of the top ten bits, one Newton step, one correction.
@@ -71,8 +78,9 @@ fn isqrt_normalized(high: u32) -> u32 {
     // high >> 22 < 1024: always inside the table, no bounds check.
     let start = NonZeroU32::MIN.saturating_add(u32::from(ROOTS[(high >> 22) as usize]));
     let root = (start.get() + high / start) >> 1;
-    // x₁ ≤ 2¹⁶: its square needs 33 bits.
-    root - u32::from(u64::from(root) * u64::from(root) > u64::from(high))
+    // 2¹⁴ ≤ x₁ ≤ 2¹⁶. Below 2¹⁶, x₁² > h ⇔ x₁² − 1 ≥ h in 32 bits; at 2¹⁶, x₁² − 1 wraps to
+    // 2³² − 1 ≥ h, which is right too (2³² > h). One `mla` and a comparison, no 64-bit square.
+    root - u32::from(root.wrapping_mul(root).wrapping_sub(1) >= high)
 }
 
 /// ⌊√((i + 1)·2²² − 1)⌋ for i = 0 … 1023 (the first 64 unused), computed when compiling.
@@ -94,8 +102,9 @@ pub(crate) fn round_sqrt(n: u64) -> u32 {
     round_root(n, isqrt(n))
 }
 
-/// As [`round_sqrt`] for n·2^shift in [2⁵⁸, 2⁶²) (see [`shift_for`]).
-#[inline(always)]
+/// As [`round_sqrt`] for n·2^shift in [2⁵⁸, 2⁶²) (see [`shift_for`]); the tests' check of the
+/// shifted root.
+#[cfg(test)]
 pub(crate) fn round_sqrt_shifted(n: u64, shift: u32) -> u32 {
     round_root(n, isqrt_shifted(n, shift))
 }
@@ -103,9 +112,15 @@ pub(crate) fn round_sqrt_shifted(n: u64, shift: u32) -> u32 {
 /// ⌊√n⌋ = `root` rounded to nearest: one more when n − q² > q.
 #[inline(always)]
 fn round_root(n: u64, root: u32) -> u32 {
-    // q² ≤ n < 2⁶², and n − q² ≤ 2q < 2³²: u64 throughout.
-    let excess = n.wrapping_sub(u64::from(root) * u64::from(root));
-    root + u32::from(excess > u64::from(root))
+    round_with_low_word(n as u32, root)
+}
+
+/// ⌊√n⌋ = `root` rounded to nearest from n's low word `low` (n mod 2³²): q² ≤ n and
+/// n − q² ≤ 2q < 2³², so the low words give n − q² exactly (one `mls`).
+#[inline(always)]
+pub(crate) fn round_with_low_word(low: u32, root: u32) -> u32 {
+    let excess = low.wrapping_sub(root.wrapping_mul(root));
+    root + u32::from(excess > root)
 }
 
 #[cfg(test)]

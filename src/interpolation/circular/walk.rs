@@ -20,10 +20,9 @@ pub struct ArcWalk {
     /// (the arc's step plus `Arc::first_offset`, so never negative).
     piece_start: u64,
     piece_end: u64,
-    /// The piece's frame: outbound, and the octant's table row (see `FRAMES`).
-    outbound: bool,
-    long_is_x: bool,
-    signs: [i32; 2],
+    /// The last step a driving position can name: min(L, 2³¹ − 1) (an I32F32's integer part is
+    /// an i32).
+    last_whole: u32,
     /// Both axes, pulses relative to the start.
     position: [i32; 2],
 }
@@ -36,24 +35,22 @@ impl ArcWalk {
             piece: arc.first_piece,
             piece_start: 0,
             piece_end: 0,
-            outbound: true,
-            long_is_x: true,
-            signs: [1, 1],
+            // At most 2³¹ − 1: the cast is exact.
+            last_whole: arc.steps.min(i32::MAX as u64) as u32,
             position: [0, 0],
         };
         walk.enter(arc.first_piece, 0);
         walk
     }
 
-    /// Makes `piece`, beginning at `start`, the present piece.
+    /// Makes `piece`, beginning at `start`, the present piece. Only the piece and its bounds are
+    /// kept (its frame is read from the arc's table where it is used): entering the next piece,
+    /// once an octant, is then a few instructions, and the worst cycle is one that does.
+    #[inline(always)]
     fn enter(&mut self, piece: u32, start: u64) {
-        let (long_is_x, signs) = self.arc.frames[(piece % 8) as usize];
         self.piece = piece;
         self.piece_start = start;
         self.piece_end = start + u64::from(self.arc.piece_steps(piece));
-        self.outbound = piece % 2 == 0;
-        self.long_is_x = long_is_x;
-        self.signs = signs;
     }
 
     /// Moves to the piece holding `last` (a position counted as `piece_start`): at most the
@@ -76,7 +73,7 @@ impl ArcWalk {
     /// The steps of the piece after the present one.
     #[inline(always)]
     fn next_steps(&self) -> u32 {
-        if self.outbound {
+        if self.piece % 2 == 0 {
             self.arc.inbound_steps
         } else {
             self.arc.outbound_steps
@@ -111,8 +108,31 @@ impl ArcWalk {
 
     /// Moves to `step` (forward or back; past the end means the end) and returns both axes'
     /// positions there: what a cycle that takes many steps calls.
+    // Always inlined: out of line, the two axes come back through memory and the call costs
+    // about ten instructions a cycle.
+    #[inline(always)]
     pub fn advance_to(&mut self, step: u64) -> [i32; 2] {
-        let step = step.min(self.arc.steps);
+        self.jump(step.min(self.arc.steps))
+    }
+
+    /// Moves to the step a driving position's integer part `whole` names (a floor, any i32):
+    /// below 0 means the start, past the end the end. As [`Self::advance_to`], with the clamp
+    /// one 32-bit comparison on the way every cycle within the arc takes.
+    #[inline(always)]
+    pub fn advance_to_whole(&mut self, whole: i32) -> [i32; 2] {
+        // Within 0 … min(L, 2³¹ − 1) the bits are the step; a negative `whole` is ≥ 2³¹ as a
+        // u32, past it. Past it otherwise only when L < 2³¹ − 1: the end.
+        let step = if whole as u32 <= self.last_whole {
+            whole as u32
+        } else {
+            clamp_outside(whole, self.last_whole)
+        };
+        self.jump(u64::from(step))
+    }
+
+    /// [`Self::advance_to`] for `step` ≤ L (the caller's contract).
+    #[inline(always)]
+    fn jump(&mut self, step: u64) -> [i32; 2] {
         self.step = step;
         // Counted from the start's piece. The piece must hold the position the last step left,
         // at − 1: piece_start < at ≤ piece_end (step 0 stays in the start's piece).
@@ -130,20 +150,31 @@ impl ArcWalk {
         }
         // 0 … the piece's steps (the end of a piece is the next one's start): below 2³¹.
         let offset = (at - self.piece_start) as u32;
-        let (long, short) = self.arc.long_and_short(self.outbound, offset);
+        let (long, short) = self.arc.long_and_short(self.piece % 2 == 0, offset);
+        let [long_x, short_x, long_y, short_y] = self.arc.frames[(self.piece % 8) as usize];
         // Both below 2³¹ (the reach was checked when the arc was built): the casts are exact.
         let (long, short) = (long as i32, short as i32);
-        let (x, y) = if self.long_is_x {
-            (long, short)
-        } else {
-            (short, long)
-        };
-        // Within i32: the reach of the circle was checked when the arc was built.
+        // Within i32: the reach of the circle was checked when the arc was built (one of each
+        // pair of coefficients is 0, the other ±1).
         self.position = [
-            (self.signs[0] * x).wrapping_add(self.arc.centre[0]),
-            (self.signs[1] * y).wrapping_add(self.arc.centre[1]),
+            self.arc.centre[0]
+                .wrapping_add(long_x.wrapping_mul(long))
+                .wrapping_add(short_x.wrapping_mul(short)),
+            self.arc.centre[1]
+                .wrapping_add(long_y.wrapping_mul(long))
+                .wrapping_add(short_y.wrapping_mul(short)),
         ];
         self.position
+    }
+}
+
+/// A driving position's integer part `whole` outside 0 … `last`, held at the nearer end.
+#[cold]
+fn clamp_outside(whole: i32, last: u32) -> u32 {
+    if whole < 0 {
+        0
+    } else {
+        last
     }
 }
 
