@@ -14,6 +14,7 @@ use profilegen::format::mc1451a::{GearRatio, TrapezoidalAcceleration};
 use profilegen::gearing::EncoderFollower;
 use profilegen::{Error, Limits, ProfileGenerator, State, StopKind};
 
+use super::gearing::check_gear;
 use super::{counts, Bytes, Scripted, Step};
 
 /// The most an encoder moves in a cycle (the gear undoes the wrap of changes below 2³¹).
@@ -182,34 +183,13 @@ impl Scripted for Geared {
     }
 
     fn check_cycle(&self, previous: &State, commanded: bool) -> Result<(), String> {
-        if self.engaged != self.follower.gear().is_engaged() {
-            return Err(format!(
-                "engaged {}, expected {}",
-                self.follower.gear().is_engaged(),
-                self.engaged
-            ));
-        }
-        let slave = self.state().position.to_bits();
-        if self.engaged {
-            // anchor + ratio · travel, the ratio's 16 fractional bits to I32F32's 32, modulo
-            // 2^64 raw units (the register's wrap).
-            let expected =
-                i128::from(self.anchor) + i128::from(self.ratio) * self.travel * (1 << 16);
-            if expected.rem_euclid(1 << 64) != i128::from(slave as u64) {
-                return Err(format!(
-                    "slave {slave} (bits), expected {expected} mod 2^64: anchor {}, ratio {}, \
-                     travel {}",
-                    self.anchor, self.ratio, self.travel
-                ));
-            }
-        } else if !commanded {
-            // Disengaged: never speeding up, toward zero.
-            let (before, after) = (previous.velocity.to_bits(), self.state().velocity.to_bits());
-            if after.abs() > before.abs() || after.signum() * before.signum() < 0 {
-                return Err(format!("stopping from {before} sped up to {after} (bits)"));
-            }
-        }
-        Ok(())
+        check_gear(
+            (self.engaged, self.anchor, self.ratio, self.travel),
+            self.follower.gear(),
+            previous,
+            self.state(),
+            commanded,
+        )
     }
 }
 

@@ -9,7 +9,7 @@ use core::fmt::Debug;
 
 use fixed::types::I32F32;
 use profilegen::format::mc1451a::{GearRatio, TrapezoidalAcceleration};
-use profilegen::gearing::Follower;
+use profilegen::gearing::{ElectronicGear, Follower};
 use profilegen::{
     Error, Limits, ProfileGenerator, SCurve, State, StopKind, Trapezoidal, VelocityContouring,
 };
@@ -219,35 +219,46 @@ impl<M: Scripted> Scripted for Geared<M> {
     fn check_cycle(&self, previous: &State, commanded: bool) -> Result<(), String> {
         let master = self.follower.master();
         master.check_cycle(&self.master_previous, commanded)?;
-        if self.engaged != self.follower.gear().is_engaged() {
+        check_gear(
+            (self.engaged, self.anchor, self.ratio, self.travel),
+            self.follower.gear(),
+            previous,
+            self.state(),
+            commanded,
+        )
+    }
+}
+
+/// SPEC §14 on one cycle of a follower, against the test's own account `(engaged, anchor, ratio
+/// (raw), travel (counts))`: the engagement as accounted; engaged, the slave exactly anchor +
+/// ratio · travel (the ratio's 16 fractional bits to I32F32's 32, modulo 2^64 raw units, the
+/// register's wrap); disengaged and not commanded, never speeding up, toward zero.
+pub fn check_gear(
+    (engaged, anchor, ratio, travel): (bool, i64, i64, i128),
+    gear: &ElectronicGear,
+    previous: &State,
+    state: State,
+    commanded: bool,
+) -> Result<(), String> {
+    if engaged != gear.is_engaged() {
+        return Err(format!("engaged {}, expected {engaged}", gear.is_engaged()));
+    }
+    let slave = state.position.to_bits();
+    if engaged {
+        let expected = i128::from(anchor) + i128::from(ratio) * travel * (1 << 16);
+        if expected.rem_euclid(1 << 64) != i128::from(slave as u64) {
             return Err(format!(
-                "engaged {}, expected {}",
-                self.follower.gear().is_engaged(),
-                self.engaged
+                "slave {slave} (bits), expected {expected} mod 2^64: anchor {anchor}, ratio \
+                 {ratio}, travel {travel}"
             ));
         }
-        let slave = self.state().position.to_bits();
-        if self.engaged {
-            // anchor + ratio · travel, the ratio's 16 fractional bits to I32F32's 32, modulo
-            // 2^64 raw units (the register's wrap).
-            let expected =
-                i128::from(self.anchor) + i128::from(self.ratio) * self.travel * (1 << 16);
-            if expected.rem_euclid(1 << 64) != i128::from(slave as u64) {
-                return Err(format!(
-                    "slave {slave} (bits), expected {expected} mod 2^64: anchor {}, ratio {}, \
-                     travel {}",
-                    self.anchor, self.ratio, self.travel
-                ));
-            }
-        } else if !commanded {
-            // Disengaged: never speeding up, toward zero.
-            let (before, after) = (previous.velocity.to_bits(), self.state().velocity.to_bits());
-            if after.abs() > before.abs() || after.signum() * before.signum() < 0 {
-                return Err(format!("stopping from {before} sped up to {after} (bits)"));
-            }
+    } else if !commanded {
+        let (before, after) = (previous.velocity.to_bits(), state.velocity.to_bits());
+        if after.abs() > before.abs() || after.signum() * before.signum() < 0 {
+            return Err(format!("stopping from {before} sped up to {after} (bits)"));
         }
-        Ok(())
     }
+    Ok(())
 }
 
 /// The master's script and the gear's.
