@@ -178,24 +178,64 @@ pub(super) fn velocity_notch(width: u64, bounds: &Bounds, c: u64) -> Option<Notc
     })
 }
 
+/// A cycle number in the width the search for a placement works in: 32 bits for a move shorter
+/// than 2^31 cycles (nearly every move; a Cortex-M4 then compares, subtracts and clamps two
+/// cycles in one instruction each, not three), 64 otherwise. Sums of two cycles of the move
+/// (`s + k`, `w + 1`) stay below 2^32 in the narrow width.
+trait Cycle: Copy + Ord + core::ops::Add<Output = Self> + core::ops::Sub<Output = Self> {
+    const ONE: Self;
+    /// The cycle in this width; a value past it (only [`u64::MAX`], the unbounded cap) becomes
+    /// the width's largest.
+    fn narrow(cycle: u64) -> Self;
+    /// Back to 64 bits.
+    fn widen(self) -> u64;
+    fn saturating_sub(self, other: Self) -> Self;
+}
+
+impl Cycle for u32 {
+    const ONE: Self = 1;
+    fn narrow(cycle: u64) -> Self {
+        u32::try_from(cycle).unwrap_or(u32::MAX)
+    }
+    fn widen(self) -> u64 {
+        u64::from(self)
+    }
+    fn saturating_sub(self, other: Self) -> Self {
+        u32::saturating_sub(self, other)
+    }
+}
+
+impl Cycle for u64 {
+    const ONE: Self = 1;
+    fn narrow(cycle: u64) -> Self {
+        cycle
+    }
+    fn widen(self) -> u64 {
+        self
+    }
+    fn saturating_sub(self, other: Self) -> Self {
+        u64::saturating_sub(self, other)
+    }
+}
+
 /// Cycles `[low, high]` (empty when `low > high`).
-type Interval = (u64, u64);
+type Interval<C> = (C, C);
 
 /// Where a pair of some width can go: its first notch's cycles, its second's, and its spans.
-type Region = (Interval, Interval, Interval);
+type Region<C> = (Interval<C>, Interval<C>, Interval<C>);
 
 /// Where one notch of a pair of width `w` can start, as a function of `w`:
 /// `[max(low_floor, low_base − w), min(high_cap, high_base − w)]`, the subtractions saturating.
 #[derive(Debug, Clone, Copy)]
-struct Edges {
-    low_floor: u64,
-    low_base: u64,
-    high_cap: u64,
-    high_base: u64,
+struct Edges<C> {
+    low_floor: C,
+    low_base: C,
+    high_cap: C,
+    high_base: C,
 }
 
-impl Edges {
-    fn at(&self, w: u64) -> Interval {
+impl<C: Cycle> Edges<C> {
+    fn at(&self, w: C) -> Interval<C> {
         (
             self.low_floor.max(self.low_base.saturating_sub(w)),
             self.high_cap.min(self.high_base.saturating_sub(w)),
@@ -206,12 +246,12 @@ impl Edges {
 /// Where a pair can go in one placement, for any width: found once per placement from the
 /// main move's [`Bounds`], then a few subtractions per width.
 #[derive(Debug, Clone, Copy)]
-struct Room {
-    first: Edges,
-    second: Edges,
+struct Room<C> {
+    first: Edges<C>,
+    second: Edges<C>,
 }
 
-impl Room {
+impl<C: Cycle> Room<C> {
     /// The first notch (−1 where the jerk is ≥ 0, +1 `w` later where it is ≤ 0, the window
     /// before phase V) in phases I–II, or in the cruise (`first_in_cruise`); the second (+1
     /// where the jerk is ≤ 0, from the end of phase III on; −1 `w` later where the jerk is ≥ 0,
@@ -249,23 +289,32 @@ impl Room {
                 high_base: bounds.total.saturating_sub(1),
             }
         };
-        Self { first, second }
+        let narrow = |edges: Edges<u64>| Edges {
+            low_floor: C::narrow(edges.low_floor),
+            low_base: C::narrow(edges.low_base),
+            high_cap: C::narrow(edges.high_cap),
+            high_base: C::narrow(edges.high_base),
+        };
+        Self {
+            first: narrow(first),
+            second: narrow(second),
+        }
     }
 
     /// For width `w`: the first notch's cycles, the second's, and the spans between them (a
     /// pair's span exceeds its width).
-    fn at(&self, w: u64) -> Region {
+    fn at(&self, w: C) -> Region<C> {
         let (first, second) = (self.first.at(w), self.second.at(w));
         let (low, high) = spans(first, second);
-        (first, second, (low.max(w + 1), high))
+        (first, second, (low.max(w + C::ONE), high))
     }
 }
 
 /// The spans a pair of width `w` can have with its first notch in `first` and its second in
 /// `second`: the differences of the two intervals.
-fn spans(first: Interval, second: Interval) -> Interval {
+fn spans<C: Cycle>(first: Interval<C>, second: Interval<C>) -> Interval<C> {
     if first.0 > first.1 || second.0 > second.1 {
-        return (1, 0);
+        return (C::ONE, C::ONE.saturating_sub(C::ONE));
     }
     (
         second.0.saturating_sub(first.1),
@@ -275,14 +324,22 @@ fn spans(first: Interval, second: Interval) -> Interval {
 
 /// The pair of width `w` and span `k` with its notches in `first` and `second`: the start in
 /// the middle of where both fit (`None` if `k` is out of reach).
-fn place(first: Interval, second: Interval, width: u64, span: u64) -> Option<Notch> {
+fn place<C: Cycle>(first: Interval<C>, second: Interval<C>, width: C, span: C) -> Option<Notch> {
     let low = first.0.max(second.0.saturating_sub(span));
-    let high = first.1.min(second.1.checked_sub(span)?);
+    if second.1 < span {
+        return None;
+    }
+    let high = first.1.min(second.1 - span);
     (low <= high).then(|| Notch {
-        start: low + (high - low) / 2,
-        width,
-        span,
+        start: (low.widen() + (high.widen() - low.widen()) / 2),
+        width: width.widen(),
+        span: span.widen(),
     })
+}
+
+/// An interval in 64 bits.
+fn widened<C: Cycle>((low, high): Interval<C>) -> (u64, u64) {
+    (low.widen(), high.widen())
 }
 
 /// Two notch pairs, of widths `w` and `w + 1`, with spans in `range`, taking exactly `left`:
@@ -320,7 +377,7 @@ fn solve_spans(left: u64, width: u64, range: (u64, u64)) -> Option<(u64, u64)> {
 fn one_pair(
     left: u64,
     width: u64,
-    range: Interval,
+    range: (u64, u64),
     (area, available): (u64, u64),
 ) -> Option<(u64, u64)> {
     debug_assert!(width == 1 || width == 2);
@@ -385,131 +442,189 @@ pub(super) fn take(
     if left >= bounds.total.saturating_mul(bounds.total) / 2 {
         return None;
     }
-    let mut try_fit = |pairs: &[Notch]| placed.try_add(pairs, main, bounds, jerk_limit);
-    // The three placements that take remainders (measured over 100,000 random moves: first notch
-    // in phases I–II with the second in the cruise or after phase V, and both in the cruise for
-    // single pairs; first in the cruise, second after phase V, never did).
-    const PLACEMENTS: [(bool, bool); 3] = [(false, true), (false, false), (true, true)];
-    // The most any q ≤ available can make of the remainder.
-    let reach = area.saturating_mul(available).saturating_add(left);
-    for placement in PLACEMENTS {
-        let room = Room::new(bounds, placement);
-        // A single pair takes w·span ≤ 2·total, and q units only add to the remainder: a larger
-        // one needs two pairs.
-        let widest = if left <= bounds.total.saturating_mul(2) {
-            2
-        } else {
-            0
-        };
-        for width in 1..=widest {
-            let (first, second, range) = room.at(width);
-            let Some((span, q)) = one_pair(left, width, range, (area, available)) else {
-                continue;
-            };
-            if place(first, second, width, span).is_some_and(|n| try_fit(&[n])) {
-                return Some(q);
-            }
-        }
-        // Two pairs only with the first notch in phases I–II (see above).
-        if placement.0 {
-            continue;
-        }
-        let region = |w: u64| room.at(w);
-        // The widths whose spans land in the middle of their range: from spans of half
-        // the move, refined twice (the range depends a little on the width).
-        let refine = |width: u64| {
-            let range = region(width).2;
-            if range.0 > range.1 {
-                return width;
-            }
-            let middle = (range.0 / 2 + range.1 / 2).max(1);
-            div(left, middle.saturating_mul(2).saturating_add(1)).max(1)
-        };
-        let guess = refine(refine(div(left, bounds.total.max(1)).max(1)));
-        // And half and all of the first ramp, where short moves have room.
-        let ramp = bounds.last_rise_start;
-        let around = guess.saturating_sub(1).max(1)..guess + WIDTH_TRIES;
-        let widths = around.clone().chain(
-            [ramp / 2, ramp]
-                .into_iter()
-                .filter(move |w| !around.contains(w)),
-        );
-        // The widths around the guess are consecutive: one's wider pair is the next one's.
-        let mut wider: Option<(u64, Region)> = None;
-        for width in widths.filter(|&w| w > 0) {
-            let (first1, second1, narrow) = match wider {
-                Some((w, known)) if w == width => known,
-                _ => region(width),
-            };
-            // Every sum w·k₁ + (w + 1)·k₂ with both spans in the narrower pair's range lies in
-            // [(2w + 1)·low, (2w + 1)·high]: outside, no q can help (a quick, exact rejection
-            // before the wider pair's room or any division).
-            let odd = (2 * width).saturating_add(1);
-            if narrow.0 > narrow.1
-                || left > odd.saturating_mul(narrow.1)
-                || reach < odd.saturating_mul(narrow.0)
-            {
-                continue;
-            }
-            let (first2, second2, wide) = region(width + 1);
-            wider = Some((width + 1, (first2, second2, wide)));
-            let (low, high) = (narrow.0.max(wide.0), narrow.1.min(wide.1));
-            if low > high {
-                continue;
-            }
-            // w·k₁ + (w + 1)·k₂ with k₁, k₂ in [low, high] has a solution for every value
-            // between these (k₁ moves in steps of w + 1, k₂ of w).
-            let (w, l, h) = (width, low, high);
-            // The same with both ranges.
-            let (lowest, highest) = (odd.saturating_mul(l), odd.saturating_mul(h));
-            if left > highest || reach < lowest {
-                continue;
-            }
-            let both_ends = w.saturating_mul(w + 1);
-            let least = (2 * w + 1).saturating_mul(l).saturating_add(both_ends);
-            let most = (2 * w + 1).saturating_mul(h).saturating_sub(both_ends);
-            let q = if left < least && area > 0 {
-                div_ceil(least - left, area)
+    let remainder = Remainder {
+        left,
+        main,
+        bounds,
+        jerk_limit,
+        area,
+        available,
+    };
+    if bounds.total < 1 << 31 {
+        remainder.take_in::<u32>(placed)
+    } else {
+        remainder.take_in::<u64>(placed)
+    }
+}
+
+/// What [`take`] places pairs for: the remainder `left`, the main move and its bounds, the jerk
+/// limit, and the units of `area` (at most `available`) that may keep their cruise.
+struct Remainder<'a> {
+    left: u64,
+    main: &'a MainMove,
+    bounds: &'a Bounds,
+    jerk_limit: u64,
+    area: u64,
+    available: u64,
+}
+
+impl Remainder<'_> {
+    /// [`take`] with cycles of type `C`, wide enough for every cycle of the move (and the sum
+    /// of two).
+    fn take_in<C: Cycle>(&self, placed: &mut Placement) -> Option<u64> {
+        let Self {
+            left,
+            main,
+            bounds,
+            jerk_limit,
+            area,
+            available,
+        } = *self;
+        let mut try_fit = |pairs: &[Notch]| placed.try_add(pairs, main, bounds, jerk_limit);
+        // The three placements that take remainders (measured over 100,000 random moves: first
+        // notch in phases I–II with the second in the cruise or after phase V, and both in the
+        // cruise for single pairs; first in the cruise, second after phase V, never did).
+        const PLACEMENTS: [(bool, bool); 3] = [(false, true), (false, false), (true, true)];
+        // The most any q ≤ available can make of the remainder.
+        let reach = area.saturating_mul(available).saturating_add(left);
+        for placement in PLACEMENTS {
+            let room = Room::<C>::new(bounds, placement);
+            // A single pair takes w·span ≤ 2·total, and q units only add to the remainder: a
+            // larger one needs two pairs.
+            let widest = if left <= bounds.total.saturating_mul(2) {
+                2
             } else {
                 0
             };
-            let Some(target) = q.checked_mul(area).and_then(|t| t.checked_add(left)) else {
-                continue;
-            };
-            if q > available || target > most.max(left) || target < lowest || target > highest {
+            for width in 1..=widest {
+                let (first, second, range) = room.at(C::narrow(width));
+                let Some((span, q)) = one_pair(left, width, widened(range), (area, available))
+                else {
+                    continue;
+                };
+                // span ≤ range.1, a cycle of the move: it narrows exactly.
+                if place(first, second, C::narrow(width), C::narrow(span))
+                    .is_some_and(|n| try_fit(&[n]))
+                {
+                    return Some(q);
+                }
+            }
+            // Two pairs only with the first notch in phases I–II (see above).
+            if placement.0 {
                 continue;
             }
-            let Some((k1, k2)) = solve_spans(target, width, (low, high)) else {
-                continue;
+            // No pair as wide as the move fits in it (a notch's window ends before phase V):
+            // the widths below are cycles of the move, and so is one more.
+            let region = |w: u64| (w < bounds.total).then(|| room.at(C::narrow(w)));
+            // The widths whose spans land in the middle of their range: from spans of half
+            // the move, refined twice (the range depends a little on the width).
+            let refine = |width: u64| {
+                let Some((_, _, range)) = region(width) else {
+                    return width;
+                };
+                let range = widened(range);
+                if range.0 > range.1 {
+                    return width;
+                }
+                let middle = (range.0 / 2 + range.1 / 2).max(1);
+                div(left, middle.saturating_mul(2).saturating_add(1)).max(1)
             };
-            let (Some(one), Some(two)) = (
-                place(first1, second1, width, k1),
-                place(first2, second2, width + 1, k2),
-            ) else {
-                continue;
-            };
-            // Their notches may meet where the jerk has no unit to spare: then move the
-            // wider pair by a cycle, within its room.
-            let moved = |by: i64| {
-                let start = two.start.checked_add_signed(by)?;
-                let fits_first = (first2.0..=first2.1).contains(&start);
-                let fits_second = (second2.0..=second2.1).contains(&(start + k2));
-                (fits_first && fits_second).then_some(Notch { start, ..two })
-            };
-            if [Some(two), moved(-1), moved(1)]
-                .into_iter()
-                .flatten()
-                .any(|two| try_fit(&[one, two]))
-            {
-                return Some(q);
+            let guess = refine(refine(div(left, bounds.total.max(1)).max(1)));
+            // And half and all of the first ramp, where short moves have room.
+            let ramp = bounds.last_rise_start;
+            let around = guess.saturating_sub(1).max(1)..guess + WIDTH_TRIES;
+            let widths = around.clone().chain(
+                [ramp / 2, ramp]
+                    .into_iter()
+                    .filter(move |w| !around.contains(w)),
+            );
+            // The widths around the guess are consecutive: one's wider pair is the next one's.
+            let mut wider: Option<(u64, Region<C>)> = None;
+            for width in widths.filter(|&w| w > 0) {
+                let known = match wider {
+                    Some((w, known)) if w == width => Some(known),
+                    _ => region(width),
+                };
+                let Some((first1, second1, narrow)) = known else {
+                    continue;
+                };
+                let narrow = widened(narrow);
+                // Every sum w·k₁ + (w + 1)·k₂ with both spans in the narrower pair's range lies
+                // in [(2w + 1)·low, (2w + 1)·high]: outside, no q can help (a quick, exact
+                // rejection before the wider pair's room or any division).
+                let odd = (2 * width).saturating_add(1);
+                if narrow.0 > narrow.1
+                    || left > odd.saturating_mul(narrow.1)
+                    || reach < odd.saturating_mul(narrow.0)
+                {
+                    continue;
+                }
+                let Some((first2, second2, wide)) = region(width + 1) else {
+                    continue;
+                };
+                wider = Some((width + 1, (first2, second2, wide)));
+                let wide = widened(wide);
+                let (low, high) = (narrow.0.max(wide.0), narrow.1.min(wide.1));
+                if low > high {
+                    continue;
+                }
+                // w·k₁ + (w + 1)·k₂ with k₁, k₂ in [low, high] has a solution for every value
+                // between these (k₁ moves in steps of w + 1, k₂ of w).
+                let (w, l, h) = (width, low, high);
+                // The same with both ranges.
+                let (lowest, highest) = (odd.saturating_mul(l), odd.saturating_mul(h));
+                if left > highest || reach < lowest {
+                    continue;
+                }
+                let both_ends = w.saturating_mul(w + 1);
+                let least = (2 * w + 1).saturating_mul(l).saturating_add(both_ends);
+                let most = (2 * w + 1).saturating_mul(h).saturating_sub(both_ends);
+                let q = if left < least && area > 0 {
+                    div_ceil(least - left, area)
+                } else {
+                    0
+                };
+                let Some(target) = q.checked_mul(area).and_then(|t| t.checked_add(left)) else {
+                    continue;
+                };
+                if q > available || target > most.max(left) || target < lowest || target > highest {
+                    continue;
+                }
+                let Some((k1, k2)) = solve_spans(target, width, (low, high)) else {
+                    continue;
+                };
+                // Both spans lie in [low, high], cycles of the move: they narrow exactly.
+                let (Some(one), Some(two)) = (
+                    place(first1, second1, C::narrow(width), C::narrow(k1)),
+                    place(first2, second2, C::narrow(width + 1), C::narrow(k2)),
+                ) else {
+                    continue;
+                };
+                let (first2, second2) = (widened(first2), widened(second2));
+                // Their notches may meet where the jerk has no unit to spare: then move the
+                // wider pair by a cycle, within its room.
+                let moved = |by: i64| {
+                    let start = two.start.checked_add_signed(by)?;
+                    let fits_first = (first2.0..=first2.1).contains(&start);
+                    let fits_second = (second2.0..=second2.1).contains(&(start + k2));
+                    (fits_first && fits_second).then_some(Notch { start, ..two })
+                };
+                if [Some(two), moved(-1), moved(1)]
+                    .into_iter()
+                    .flatten()
+                    .any(|two| try_fit(&[one, two]))
+                {
+                    return Some(q);
+                }
             }
         }
+        None
     }
-    None
 }
 
 #[cfg(test)]
 mod tests {
+    use super::super::shape::Mix;
     use super::*;
     use proptest::prelude::*;
 
@@ -535,6 +650,51 @@ mod tests {
                     }
                 }
             }
+        }
+
+        /// The search in 32-bit cycles (moves shorter than 2^31 cycles) places exactly the
+        /// pairs the 64-bit one does, or fails where it fails.
+        #[test]
+        fn cycles_in_32_bits_place_the_same_pairs(
+            a in 1u64..400,
+            longer in 0u64..400,
+            cruise in 0u64..800,
+            counts in proptest::array::uniform4(0u64..4),
+            early in proptest::array::uniform4(0u64..2),
+            share in 0.0f64..1.0,
+            (area, available) in (0u64..5_000, 0u64..4),
+        ) {
+            prop_assume!(counts.iter().sum::<u64>() > 0 && a > 1);
+            let b = a + longer;
+            let c = a + b + cruise + 1;
+            let mix = Mix {
+                a,
+                b,
+                counts,
+                acceleration: 0,
+                velocity: 0,
+            };
+            let early = core::array::from_fn(|k| early[k].min(counts[k]));
+            let main = mix.main_move(c, early);
+            let bounds = main.bounds();
+            // Remainders across what two pairs can take (< total²/2), the tests' floats only
+            // pick one.
+            let most = bounds.total * bounds.total / 2;
+            let left = ((most as f64 * share * share) as u64).max(2);
+            let remainder = Remainder {
+                left,
+                main: &main,
+                bounds: &bounds,
+                jerk_limit: 4,
+                area,
+                available,
+            };
+            let (mut narrow, mut wide) = (Placement::default(), Placement::default());
+            prop_assert_eq!(
+                remainder.take_in::<u32>(&mut narrow),
+                remainder.take_in::<u64>(&mut wide)
+            );
+            prop_assert_eq!(narrow, wide);
         }
     }
 }

@@ -40,6 +40,80 @@ struct Candidate {
     c: u64,
 }
 
+/// What decides whether [`complete`] can fit a candidate's remainder: its units (as the ramps
+/// `(a, b)` and counts of the mix written with the longest ramps its units have, so two mixes
+/// of the same units compare equal), phase V's cycle `c` and the velocity notch. Adjacent
+/// shapes often share their units — with one unit of jerk, shape `(a, b + 1)`'s only unit of
+/// kind `(a, b)` is shape `(a, b)`'s — and a remainder that did not fit once does not fit again.
+#[derive(Debug, Clone, Copy)]
+struct Attempt {
+    a: u64,
+    b: u64,
+    /// Units of kinds 0 and 1, and of kinds 2 and 3, 32 bits each (each count is at most the
+    /// jerk, < 2^31): plain words, compared without a call to `memcmp`.
+    counts: [u64; 2],
+    c: u64,
+    notch: u64,
+}
+
+impl Attempt {
+    fn of(candidate: &Candidate, c: u64) -> Self {
+        let mix = &candidate.mix;
+        let (mut a, mut b, mut counts) = (mix.a, mix.b, mix.counts);
+        // No unit of the longer second ramp: the kinds (a, b − 1), (a − 1, b − 1) are the
+        // longest of the mix (a, b − 1); no unit of the longer first ramp: likewise (a − 1, b).
+        // Until a unit has both (a few steps: the ramps only shorten).
+        while counts[0] == 0 {
+            if counts[2] == 0 && b > a {
+                (b, counts) = (b - 1, [counts[1], 0, counts[3], 0]);
+            } else if counts[1] == 0 && a > 1 {
+                (a, counts) = (a - 1, [counts[2], counts[3], 0, 0]);
+            } else {
+                break;
+            }
+        }
+        Self {
+            a,
+            b,
+            counts: [counts[0] | counts[1] << 32, counts[2] | counts[3] << 32],
+            c,
+            notch: candidate.notch,
+        }
+    }
+
+    fn is(&self, other: &Self) -> bool {
+        self.a == other.a
+            && self.b == other.b
+            && self.counts[0] == other.counts[0]
+            && self.counts[1] == other.counts[1]
+            && self.c == other.c
+            && self.notch == other.notch
+    }
+}
+
+/// The last two attempts whose remainder did not fit: the duplicates come from neighbouring
+/// shapes, each tried at two cruise lengths in turn.
+#[derive(Debug, Default)]
+struct Failed {
+    /// `None` until written: only the tags are cleared when a search begins.
+    attempts: [Option<Attempt>; 2],
+    next: usize,
+}
+
+impl Failed {
+    fn contains(&self, attempt: &Attempt) -> bool {
+        self.attempts
+            .iter()
+            .flatten()
+            .any(|known| known.is(attempt))
+    }
+
+    fn push(&mut self, attempt: Attempt) {
+        self.attempts[self.next % 2] = Some(attempt);
+        self.next += 1;
+    }
+}
+
 /// Ramps `(a, b)` and the cruise velocity they aim at; `cycles` is the move's length if the
 /// unit mix meets that velocity exactly.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -221,6 +295,7 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
     let mut planned = false;
     // Candidates tried at their own cruise already, ahead of their turn: bit 2·shape + index.
     let mut tried = 0u16;
+    let mut failed = Failed::default();
     'shapes: for (i, shape) in found[..len].iter().enumerate() {
         // The mix that meets the velocity from below, and — unless it meets it exactly — the
         // one from above with a velocity notch; the faster first (as [`Shape::candidates`],
@@ -240,7 +315,9 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
             let Some(candidate) = candidate else {
                 continue;
             };
-            if tried & (1 << (2 * i + k)) == 0 && complete(candidate, candidate.c, &move_, out) {
+            if tried & (1 << (2 * i + k)) == 0
+                && complete_once(candidate, candidate.c, &move_, out, &mut failed)
+            {
                 planned = true;
                 break 'shapes;
             }
@@ -265,14 +342,14 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
                             continue;
                         }
                         tried |= bit;
-                        if complete(early, early.c, &move_, out) {
+                        if complete_once(early, early.c, &move_, out, &mut failed) {
                             planned = true;
                             break 'shapes;
                         }
                     }
                 }
             }
-            if complete(candidate, candidate.c + 1, &move_, out) {
+            if complete_once(candidate, candidate.c + 1, &move_, out, &mut failed) {
                 planned = true;
                 break 'shapes;
             }
@@ -434,6 +511,32 @@ fn complete(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule) -> 
     }
 }
 
+/// [`complete`], unless the same units with the same `c` and notch failed already
+/// ([`Attempt`]). Only a mix with a unit of its longest kind is remembered: then its ramps
+/// `(a, b)` are its units' own, so nothing about it depends on how it was written — where a
+/// mix without one may fail only because its nominal ramps are longer than its units' (the
+/// schedule's check in [`finish`]). Only a mix without one is looked up: a mix with one is
+/// written as every mix of the same units would be.
+fn complete_once(
+    candidate: &Candidate,
+    c: u64,
+    move_: &Move,
+    out: &mut Schedule,
+    failed: &mut Failed,
+) -> bool {
+    let longest_kind = candidate.mix.counts[0] > 0;
+    if !longest_kind && failed.contains(&Attempt::of(candidate, c)) {
+        return false;
+    }
+    if complete(candidate, c, move_, out) {
+        return true;
+    }
+    if longest_kind {
+        failed.push(Attempt::of(candidate, c));
+    }
+    false
+}
+
 /// As [`complete`], for a mix planned with two units of jerk to spare: one unit more than fits
 /// ends its cruise early, and one or two fine units `tb(1, 1, x)` (`x` raw units each,
 /// `2 ≤ x ≤ total − 2`) add back the difference.
@@ -540,6 +643,7 @@ fn around(move_: &Move, out: &mut Schedule) -> bool {
     let wide = &mut wide[..count];
     wide.sort_unstable_by_key(|shape| shape.cycles);
     let mut tries = 0;
+    let mut failed = Failed::default();
     for shape in wide.iter() {
         let Some(candidate) = shape.candidate(true, distance, limits) else {
             continue;
@@ -549,7 +653,7 @@ fn around(move_: &Move, out: &mut Schedule) -> bool {
                 return false;
             }
             tries += 1;
-            if complete(&candidate, candidate.c + extra, move_, out) {
+            if complete_once(&candidate, candidate.c + extra, move_, out, &mut failed) {
                 return true;
             }
         }
@@ -597,6 +701,68 @@ fn one_cycle_ramps(move_: &Move, out: &mut Schedule) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A mix without units of its longest kind is remembered as the mix of its units' own
+    /// ramps: the same key, and the same main move (what [`complete`] decides on) at every
+    /// cycle of phase V and every choice of early units.
+    #[test]
+    fn an_attempt_is_keyed_by_its_units() {
+        for a in 2..7u64 {
+            for b in a..a + 4 {
+                for counts in (0..81u32).map(|n| [0, n % 3, n / 3 % 3, n / 9 % 3].map(u64::from)) {
+                    if counts.iter().sum::<u64>() == 0 {
+                        continue;
+                    }
+                    let mix = Mix {
+                        a,
+                        b,
+                        counts,
+                        acceleration: 0,
+                        velocity: 0,
+                    };
+                    let c = 2 * (a + b) + 1;
+                    let written = Candidate { mix, notch: 1, c };
+                    let key = Attempt::of(&written, c);
+                    let own = Mix {
+                        a: key.a,
+                        b: key.b,
+                        counts: [
+                            key.counts[0] & 0xFFFF_FFFF,
+                            key.counts[0] >> 32,
+                            key.counts[1] & 0xFFFF_FFFF,
+                            key.counts[1] >> 32,
+                        ],
+                        ..mix
+                    };
+                    let as_own = Candidate {
+                        mix: own,
+                        ..written
+                    };
+                    assert!(Attempt::of(&as_own, c).is(&key), "{mix:?}");
+                    // Early units of each kind, at that kind's place in the other writing.
+                    let early = counts.map(|n| n.min(1));
+                    let mut own_early = [0; 4];
+                    for (k, kind) in mix.kinds().into_iter().enumerate() {
+                        if counts[k] > 0 {
+                            let at = own.kinds().iter().position(|&o| o == kind);
+                            own_early[at.expect("a unit's kind is one of the own mix's")] =
+                                early[k];
+                        }
+                    }
+                    assert_eq!(
+                        mix.main_move(c, early),
+                        own.main_move(c, own_early),
+                        "{mix:?} → {own:?}"
+                    );
+                    assert_eq!(
+                        mix.main_move(c, [0; 4]),
+                        own.main_move(c, [0; 4]),
+                        "{mix:?} → {own:?}"
+                    );
+                }
+            }
+        }
+    }
 
     #[test]
     fn cube_root_is_exact() {
