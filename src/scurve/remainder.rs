@@ -472,14 +472,8 @@ impl Remainder<'_> {
     /// [`take`] with cycles of type `C`, wide enough for every cycle of the move (and the sum
     /// of two).
     fn take_in<C: Cycle>(&self, placed: &mut Placement) -> Option<u64> {
-        let Self {
-            left,
-            main,
-            bounds,
-            jerk_limit,
-            area,
-            available,
-        } = *self;
+        let (left, bounds, area, available) = (self.left, self.bounds, self.area, self.available);
+        let (main, jerk_limit) = (self.main, self.jerk_limit);
         let mut try_fit = |pairs: &[Notch]| placed.try_add(pairs, main, bounds, jerk_limit);
         // The three placements that take remainders (measured over 100,000 random moves: first
         // notch in phases I–II with the second in the cruise or after phase V, and both in the
