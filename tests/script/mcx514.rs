@@ -17,7 +17,7 @@ use profilegen::{
 use super::{counts, Bytes, NoCommand, Scripted, Step};
 
 /// Cycle times, seconds: the per-cycle registers from fine to coarse.
-const CYCLES: [f64; 5] = [1e-4, 2.5e-4, 1e-3, 2e-3, 4e-3];
+pub const CYCLES: [f64; 5] = [1e-4, 2.5e-4, 1e-3, 2e-3, 4e-3];
 
 /// The deceleration mode, raw.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -30,12 +30,15 @@ pub enum Mode {
     Disabled,
 }
 
+/// An MCX514 drive's registers: pulses, initial speed, drive speed, acceleration, deceleration
+/// (raw), deceleration mode, index into the cycle times.
+pub type Parameters = (u32, u32, u32, u32, u32, Mode, usize);
+
 /// The generator's registers and its script.
 #[derive(Debug, Clone)]
 pub struct Script {
-    /// Pulses, initial speed, drive speed, acceleration, deceleration (raw), mode, index into
-    /// the cycle times.
-    pub parameters: (u32, u32, u32, u32, u32, Mode, usize),
+    /// The registers.
+    pub parameters: Parameters,
     /// The steps.
     pub steps: Vec<Step<NoCommand>>,
 }
@@ -91,29 +94,7 @@ impl Script {
     /// # Errors
     /// A cycle time refused.
     pub fn registers(&self) -> Result<Option<(Mcx514Parameters, CycleTime)>, String> {
-        let (pulses, initial, drive, acceleration, deceleration, mode, cycle) = self.parameters;
-        let cycle =
-            CycleTime::from_seconds(CYCLES[cycle % CYCLES.len()]).map_err(|e| e.to_string())?;
-        let registers = (|| -> Result<Mcx514Parameters, Error> {
-            Ok(Mcx514Parameters {
-                pulses,
-                initial_speed: InitialSpeed::from_bits(initial)?,
-                drive_speed: DriveSpeed::from_bits(drive)?,
-                acceleration: Acceleration::from_bits(acceleration)?,
-                deceleration: Deceleration::from_bits(match mode {
-                    Mode::Automatic => acceleration,
-                    _ => deceleration,
-                })?,
-                deceleration_mode: match mode {
-                    Mode::Automatic => DecelerationMode::Automatic,
-                    Mode::Manual(point) => {
-                        DecelerationMode::Manual(ManualDecelerationPoint::from_bits(point)?)
-                    }
-                    Mode::Disabled => DecelerationMode::Disabled,
-                },
-            })
-        })();
-        Ok(registers.ok().map(|registers| (registers, cycle)))
+        registers(self.parameters)
     }
 
     /// Builds the drive: `None` if the registers are refused, as they must be then.
@@ -122,17 +103,13 @@ impl Script {
     /// Valid registers refused.
     pub fn build(&self) -> Result<Option<Drive>, String> {
         let (pulses, initial, drive, acceleration, _, mode, _) = self.parameters;
-        let registers = self.registers()?;
+        let registers = registers(self.parameters)?;
         let Some((registers, cycle)) = registers else {
             return Ok(None); // a register out of its range: the strategy's extremes, refused
         };
-        let generator = match Mcx514Trapezoidal::new(registers, cycle) {
-            Ok(generator) => generator,
-            // Refused: the initial speed above the drive speed, or a register that rounds to
-            // zero (or overflows) per cycle — both errors the docs name.
-            Err(_) if initial > drive || pulses > FinishPoint::MAX_BITS as u32 => return Ok(None),
-            Err(Error::Underflow { .. } | Error::OutOfRange { .. }) => return Ok(None),
-            Err(error) => return Err(format!("valid registers refused: {error}")),
+        let Some(generator) = accepted(Mcx514Trapezoidal::new(registers, cycle), self.parameters)?
+        else {
+            return Ok(None);
         };
         let per_cycle = |value: f64, power: i32| value * cycle.seconds().powi(power);
         let (s, v) = (
@@ -173,26 +150,36 @@ impl Script {
         let drive = bytes.boosted(DriveSpeed::MAX_BITS.into()) as u32;
         let acceleration = bytes.boosted(Acceleration::MAX_BITS.into()) as u32;
         let deceleration = bytes.boosted(Deceleration::MAX_BITS.into()) as u32;
-        let mode = match bytes.byte() % 4 {
-            0 | 1 => Mode::Automatic,
-            2 => Mode::Manual(bytes.boosted(ManualDecelerationPoint::MAX_BITS.into()) as u32),
-            _ => Mode::Disabled,
-        };
-        let cycle = usize::from(bytes.byte());
+        let parameters =
+            with_mode_and_cycle(bytes, [pulses, initial, drive, acceleration, deceleration]);
         let steps = bytes.steps(|_| None);
-        Self {
-            parameters: (
-                pulses,
-                initial,
-                drive,
-                acceleration,
-                deceleration,
-                mode,
-                cycle,
-            ),
-            steps,
-        }
+        Self { parameters, steps }
     }
+}
+
+/// The registers `[pulses, initial, drive, acceleration, deceleration]` decoded already, with
+/// the deceleration mode and the cycle time decoded next (the fuzz targets).
+pub fn with_mode_and_cycle(bytes: &mut Bytes, registers: [u32; 5]) -> Parameters {
+    let mode = match bytes.byte() % 4 {
+        0 | 1 => Mode::Automatic,
+        2 => Mode::Manual(bytes.boosted(ManualDecelerationPoint::MAX_BITS.into()) as u32),
+        _ => Mode::Disabled,
+    };
+    parameters_of(registers, mode, usize::from(bytes.byte()))
+}
+
+/// The registers `[pulses, initial, drive, acceleration, deceleration]`, mode and cycle time.
+fn parameters_of(registers: [u32; 5], mode: Mode, cycle: usize) -> Parameters {
+    let [pulses, initial, drive, acceleration, deceleration] = registers;
+    (
+        pulses,
+        initial,
+        drive,
+        acceleration,
+        deceleration,
+        mode,
+        cycle,
+    )
 }
 
 impl Scripted for Drive {
@@ -216,29 +203,92 @@ impl Scripted for Drive {
         None
     }
 
-    /// The position never passes the finish point, nor goes back.
     fn check_cycle(&self, previous: &State, _commanded: bool) -> Result<(), String> {
-        let position = self.state().position.to_bits();
-        if position > self.finish || position < previous.position.to_bits() {
-            return Err(format!("left 0 … the finish point {} (bits)", self.finish));
-        }
-        Ok(())
+        between_start_and_finish(&self.state(), previous, self.finish)
     }
 
-    /// At rest; exactly on the finish point unless stopped.
     fn check_settled(&self, stopped: bool) -> Result<(), String> {
-        let state = self.state();
-        if state.velocity != 0 || (!stopped && state.position.to_bits() != self.finish) {
-            return Err(format!("settled off the finish point: {state:?}"));
-        }
-        Ok(())
+        settled(&self.state(), stopped, self.finish)
     }
 }
 
-/// The proptest strategy.
+/// The registers of an MCX514 drive and the cycle time: `None` for a register out of its range
+/// (the strategy's extremes, refused). With automatic deceleration DC is AC.
+///
+/// # Errors
+/// A cycle time refused.
+pub fn registers(parameters: Parameters) -> Result<Option<(Mcx514Parameters, CycleTime)>, String> {
+    let (pulses, initial, drive, acceleration, deceleration, mode, cycle) = parameters;
+    let cycle = CycleTime::from_seconds(CYCLES[cycle % CYCLES.len()]).map_err(|e| e.to_string())?;
+    let registers = (|| -> Result<Mcx514Parameters, Error> {
+        Ok(Mcx514Parameters {
+            pulses,
+            initial_speed: InitialSpeed::from_bits(initial)?,
+            drive_speed: DriveSpeed::from_bits(drive)?,
+            acceleration: Acceleration::from_bits(acceleration)?,
+            deceleration: Deceleration::from_bits(match mode {
+                Mode::Automatic => acceleration,
+                _ => deceleration,
+            })?,
+            deceleration_mode: match mode {
+                Mode::Automatic => DecelerationMode::Automatic,
+                Mode::Manual(point) => {
+                    DecelerationMode::Manual(ManualDecelerationPoint::from_bits(point)?)
+                }
+                Mode::Disabled => DecelerationMode::Disabled,
+            },
+        })
+    })();
+    Ok(registers.ok().map(|registers| (registers, cycle)))
+}
+
+/// The generator an MCX514 drive's registers made; `None` where refusing them is right: SV
+/// above DV, pulses past the finish point's range, or a register that rounds to zero (or
+/// overflows) per cycle — the errors the docs name.
+///
+/// # Errors
+/// Valid registers refused.
+pub fn accepted<G>(made: Result<G, Error>, parameters: Parameters) -> Result<Option<G>, String> {
+    let (pulses, initial, drive, ..) = parameters;
+    match made {
+        Ok(generator) => Ok(Some(generator)),
+        Err(_) if initial > drive || pulses > FinishPoint::MAX_BITS as u32 => Ok(None),
+        Err(Error::Underflow { .. } | Error::OutOfRange { .. }) => Ok(None),
+        Err(error) => Err(format!("valid registers refused: {error}")),
+    }
+}
+
+/// The position never passes the finish point (I32F32 bits), nor goes back.
+///
+/// # Errors
+/// Where it does.
+pub fn between_start_and_finish(
+    state: &State,
+    previous: &State,
+    finish: i64,
+) -> Result<(), String> {
+    let position = state.position.to_bits();
+    if position > finish || position < previous.position.to_bits() {
+        return Err(format!("left 0 … the finish point {finish} (bits)"));
+    }
+    Ok(())
+}
+
+/// At rest; exactly on the finish point (I32F32 bits) unless stopped.
+///
+/// # Errors
+/// Where it is not.
+pub fn settled(state: &State, stopped: bool, finish: i64) -> Result<(), String> {
+    if state.velocity != 0 || (!stopped && state.position.to_bits() != finish) {
+        return Err(format!("settled off the finish point: {state:?}"));
+    }
+    Ok(())
+}
+
+/// The strategy for an MCX514 drive's registers.
 #[cfg(test)]
-pub fn script() -> impl proptest::strategy::Strategy<Value = Script> {
-    use super::{boosted, plain_steps};
+pub fn parameters() -> impl proptest::strategy::Strategy<Value = Parameters> {
+    use super::boosted;
     use proptest::prelude::*;
     let pulses = boosted(0, FinishPoint::MAX_BITS as u64).prop_map(|bits| bits as u32);
     let speed = || boosted(1, DriveSpeed::MAX_BITS.into()).prop_map(|bits| bits as u32);
@@ -256,22 +306,21 @@ pub fn script() -> impl proptest::strategy::Strategy<Value = Script> {
             (x.min(y), x.max(y))
         }
     });
-    (
-        (pulses, speeds, rate(), rate(), mode, 0..CYCLES.len()),
-        plain_steps(12),
+    (pulses, speeds, rate(), rate(), mode, 0..CYCLES.len()).prop_map(
+        |(pulses, (initial, drive), acceleration, deceleration, mode, cycle)| {
+            parameters_of(
+                [pulses, initial, drive, acceleration, deceleration],
+                mode,
+                cycle,
+            )
+        },
     )
-        .prop_map(
-            |((pulses, (initial, drive), acceleration, deceleration, mode, cycle), steps)| Script {
-                parameters: (
-                    pulses,
-                    initial,
-                    drive,
-                    acceleration,
-                    deceleration,
-                    mode,
-                    cycle,
-                ),
-                steps,
-            },
-        )
+}
+
+/// The proptest strategy.
+#[cfg(test)]
+pub fn script() -> impl proptest::strategy::Strategy<Value = Script> {
+    use super::plain_steps;
+    use proptest::prelude::*;
+    (parameters(), plain_steps(12)).prop_map(|(parameters, steps)| Script { parameters, steps })
 }

@@ -5,27 +5,22 @@
 
 use profilegen::format::mcx514::{
     Acceleration, Deceleration, DecelerationJerk, DriveSpeed, FinishPoint, InitialSpeed, Jerk,
-    ManualDecelerationPoint,
 };
-use profilegen::format::CycleTime;
 use profilegen::reference::scurve_duration;
 use profilegen::{
-    DecelerationMode, Error, Limits, Mcx514Parameters, Mcx514SCurve, Mcx514ScurveParameters,
-    ProfileGenerator, State, StopKind,
+    Error, Limits, Mcx514SCurve, Mcx514ScurveParameters, ProfileGenerator, State, StopKind,
 };
 
-use super::mcx514::Mode;
+use super::mcx514::{
+    accepted, between_start_and_finish, registers, settled, with_mode_and_cycle, Mode, Parameters,
+};
 use super::{counts, Bytes, NoCommand, Scripted, Step};
-
-/// Cycle times, seconds: the per-cycle registers from fine to coarse.
-const CYCLES: [f64; 5] = [1e-4, 2.5e-4, 1e-3, 2e-3, 4e-3];
 
 /// The generator's registers and its script.
 #[derive(Debug, Clone)]
 pub struct Script {
-    /// Pulses, initial speed, drive speed, acceleration AC, deceleration DC (raw), mode, index
-    /// into the cycle times.
-    pub parameters: (u32, u32, u32, u32, u32, Mode, usize),
+    /// The registers of the trapezoid underneath (`mcx514.rs`).
+    pub parameters: Parameters,
     /// Jerk JK and deceleration jerk DJ (raw; DJ is JK with automatic deceleration).
     pub jerks: (u32, u32),
     /// The steps.
@@ -85,46 +80,28 @@ impl Script {
     /// # Errors
     /// Valid registers refused.
     pub fn build(&self) -> Result<Option<Drive>, String> {
-        let (pulses, initial, drive, acceleration, deceleration, mode, cycle) = self.parameters;
+        let (pulses, initial, drive, acceleration, _, mode, _) = self.parameters;
         let (jerk, deceleration_jerk) = match mode {
             Mode::Automatic => (self.jerks.0, self.jerks.0),
             _ => self.jerks,
         };
-        let cycle =
-            CycleTime::from_seconds(CYCLES[cycle % CYCLES.len()]).map_err(|e| e.to_string())?;
-        let registers = (|| -> Result<Mcx514ScurveParameters, Error> {
-            Ok(Mcx514ScurveParameters {
-                trapezoid: Mcx514Parameters {
-                    pulses,
-                    initial_speed: InitialSpeed::from_bits(initial)?,
-                    drive_speed: DriveSpeed::from_bits(drive)?,
-                    acceleration: Acceleration::from_bits(acceleration)?,
-                    deceleration: Deceleration::from_bits(match mode {
-                        Mode::Automatic => acceleration,
-                        _ => deceleration,
-                    })?,
-                    deceleration_mode: match mode {
-                        Mode::Automatic => DecelerationMode::Automatic,
-                        Mode::Manual(point) => {
-                            DecelerationMode::Manual(ManualDecelerationPoint::from_bits(point)?)
-                        }
-                        Mode::Disabled => DecelerationMode::Disabled,
-                    },
-                },
-                jerk: Jerk::from_bits(jerk)?,
-                deceleration_jerk: DecelerationJerk::from_bits(deceleration_jerk)?,
-            })
-        })();
-        let Ok(registers) = registers else {
+        let Some((trapezoid, cycle)) = registers(self.parameters)? else {
             return Ok(None); // a register out of its range: the strategy's extremes, refused
         };
-        let generator = match Mcx514SCurve::new(registers, cycle) {
-            Ok(generator) => generator,
-            // Refused: SV above DV, pulses past the finish point's range, or a register that
-            // rounds to zero (or overflows) per cycle — errors the docs name.
-            Err(_) if initial > drive || pulses > FinishPoint::MAX_BITS as u32 => return Ok(None),
-            Err(Error::Underflow { .. } | Error::OutOfRange { .. }) => return Ok(None),
-            Err(error) => return Err(format!("valid registers refused: {error}")),
+        let (Ok(jerk_register), Ok(deceleration_jerk_register)) = (
+            Jerk::from_bits(jerk),
+            DecelerationJerk::from_bits(deceleration_jerk),
+        ) else {
+            return Ok(None);
+        };
+        let registers = Mcx514ScurveParameters {
+            trapezoid,
+            jerk: jerk_register,
+            deceleration_jerk: deceleration_jerk_register,
+        };
+        let Some(generator) = accepted(Mcx514SCurve::new(registers, cycle), self.parameters)?
+        else {
+            return Ok(None);
         };
         let per_cycle = |value: u32, power: i32| f64::from(value) * cycle.seconds().powi(power);
         let (s, v) = (per_cycle(initial, 1), per_cycle(drive, 1));
@@ -182,23 +159,11 @@ impl Script {
         let deceleration = bytes.boosted(Deceleration::MAX_BITS.into()) as u32;
         let jerk = bytes.boosted(Jerk::MAX_BITS.into()) as u32;
         let deceleration_jerk = bytes.boosted(DecelerationJerk::MAX_BITS.into()) as u32;
-        let mode = match bytes.byte() % 4 {
-            0 | 1 => Mode::Automatic,
-            2 => Mode::Manual(bytes.boosted(ManualDecelerationPoint::MAX_BITS.into()) as u32),
-            _ => Mode::Disabled,
-        };
-        let cycle = usize::from(bytes.byte());
+        let parameters =
+            with_mode_and_cycle(bytes, [pulses, initial, drive, acceleration, deceleration]);
         let steps = bytes.steps(|_| None);
         Self {
-            parameters: (
-                pulses,
-                initial,
-                drive,
-                acceleration,
-                deceleration,
-                mode,
-                cycle,
-            ),
+            parameters,
             jerks: (jerk, deceleration_jerk),
             steps,
         }
@@ -229,13 +194,8 @@ impl Scripted for Drive {
         None
     }
 
-    /// The position never passes the finish point, nor goes back.
     fn check_cycle(&self, previous: &State, _commanded: bool) -> Result<(), String> {
-        let position = self.state().position.to_bits();
-        if position > self.finish || position < previous.position.to_bits() {
-            return Err(format!("left 0 … the finish point {} (bits)", self.finish));
-        }
-        Ok(())
+        between_start_and_finish(&self.state(), previous, self.finish)
     }
 
     /// At rest; exactly on the finish point unless stopped; a move that was not stopped took at
@@ -247,60 +207,22 @@ impl Scripted for Drive {
                 self.elapsed, self.tight
             ));
         }
-        let state = self.state();
-        if state.velocity != 0 || (!stopped && state.position.to_bits() != self.finish) {
-            return Err(format!("settled off the finish point: {state:?}"));
-        }
-        Ok(())
+        settled(&self.state(), stopped, self.finish)
     }
 }
 
 /// The proptest strategy.
 #[cfg(test)]
 pub fn script() -> impl proptest::strategy::Strategy<Value = Script> {
+    use super::mcx514::parameters;
     use super::{boosted, plain_steps};
     use proptest::prelude::*;
-    let pulses = boosted(0, FinishPoint::MAX_BITS as u64).prop_map(|bits| bits as u32);
-    let speed = || boosted(1, DriveSpeed::MAX_BITS.into()).prop_map(|bits| bits as u32);
-    let rate = || boosted(1, Acceleration::MAX_BITS.into()).prop_map(|bits| bits as u32);
     let jerk = || boosted(1, Jerk::MAX_BITS.into()).prop_map(|bits| bits as u32);
-    let mode = prop_oneof![
-        2 => Just(Mode::Automatic),
-        2 => boosted(0, ManualDecelerationPoint::MAX_BITS.into()).prop_map(|point| Mode::Manual(point as u32)),
-        1 => Just(Mode::Disabled),
-    ];
-    // The initial speed at or below the drive speed three times in four (above it is refused).
-    let speeds = (speed(), speed(), 0u8..4).prop_map(|(x, y, order)| {
-        if order == 0 {
-            (x, y)
-        } else {
-            (x.min(y), x.max(y))
+    (parameters(), (jerk(), jerk()), plain_steps(12)).prop_map(|(parameters, jerks, steps)| {
+        Script {
+            parameters,
+            jerks,
+            steps,
         }
-    });
-    (
-        (pulses, speeds, rate(), rate(), mode, 0..CYCLES.len()),
-        (jerk(), jerk()),
-        plain_steps(12),
-    )
-        .prop_map(
-            |(
-                (pulses, (initial, drive), acceleration, deceleration, mode, cycle),
-                jerks,
-                steps,
-            )| {
-                Script {
-                    parameters: (
-                        pulses,
-                        initial,
-                        drive,
-                        acceleration,
-                        deceleration,
-                        mode,
-                        cycle,
-                    ),
-                    jerks,
-                    steps,
-                }
-            },
-        )
+    })
 }
