@@ -76,24 +76,7 @@ fn on_circle(centre: [i32; 2], point: [i32; 2]) -> bool {
 impl<G: Scripted> Scripted for Driven<G> {
     type Command = G::Command;
 
-    fn apply(&mut self, command: &G::Command) -> Result<(), Error> {
-        self.generator.apply(command)
-    }
-    fn settle_bound(&self, stopped: bool) -> f64 {
-        self.generator.settle_bound(stopped)
-    }
-    fn settled(&self) -> bool {
-        self.generator.settled()
-    }
-    fn velocity_register(&self) -> Option<i64> {
-        self.generator.velocity_register()
-    }
-    fn predict(&self, cycles: u64) -> Option<State> {
-        self.generator.predict(cycles)
-    }
-    fn check_command(&self) -> Result<(), String> {
-        self.generator.check_command()
-    }
+    scripted_as_its_generator!(generator);
 
     fn check_cycle(&self, previous: &State, commanded: bool) -> Result<(), String> {
         self.generator.check_cycle(previous, commanded)?;

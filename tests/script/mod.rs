@@ -42,6 +42,32 @@
 //!   [`Scripted::check_settled`]).
 #![allow(dead_code)] // each test and fuzz target uses its own generator
 
+/// The [`Scripted`] methods a wrapper takes unchanged from the generator it drives (the field
+/// `$generator`): its commands, bounds, velocity register, prediction and command check. The
+/// wrapper writes its own `check_cycle` (and anything it changes).
+macro_rules! scripted_as_its_generator {
+    ($generator:ident) => {
+        fn apply(&mut self, command: &Self::Command) -> Result<(), Error> {
+            self.$generator.apply(command)
+        }
+        fn settle_bound(&self, stopped: bool) -> f64 {
+            self.$generator.settle_bound(stopped)
+        }
+        fn settled(&self) -> bool {
+            self.$generator.settled()
+        }
+        fn velocity_register(&self) -> Option<i64> {
+            self.$generator.velocity_register()
+        }
+        fn predict(&self, cycles: u64) -> Option<State> {
+            self.$generator.predict(cycles)
+        }
+        fn check_command(&self) -> Result<(), String> {
+            self.$generator.check_command()
+        }
+    };
+}
+
 pub mod circular;
 pub mod continuous;
 pub mod encoder_gearing;
