@@ -4,19 +4,20 @@
 //! The master is a position register in whole counts: another generator's (the integer part of
 //! its position, as the chip's register holds it) or an encoder's count given each cycle. Its
 //! 32-bit wrap is undone by taking each cycle's change modulo 2³² (a master moves less than 2³¹
-//! counts per cycle) and adding it to the master's travel since the gear engaged. The follower
-//! is then, on every cycle,
+//! counts per cycle). The follower is, on every cycle,
 //!
 //! ```text
 //! slave(n) = slave(0) + ratio · (master(n) − master(0))      (ratio: signed, 1/2^16)
 //! ```
 //!
-//! computed whole each cycle, not summed up: the product of a count and a 1/2¹⁶ ratio has 16
-//! fractional bits, which I32F32 holds, so it is exact, and nothing accumulates — no drift over
-//! any number of cycles. The position register wraps at 32 integer bits, so only the travel
-//! modulo 2⁶⁴ matters (the product is taken modulo 2⁶⁴ raw units, as the register is). The
-//! velocity and acceleration are the differences (SPEC §5); a ratio change re-anchors the
-//! formula at the present cycle, so the velocity jumps, as on the chip.
+//! exactly: each cycle moves it by the ratio times the master's change, and the product of a
+//! count and a 1/2¹⁶ ratio has 16 fractional bits, which I32F32 holds, so every cycle's step is
+//! an exact number of raw units and their sum is exactly the product of the whole travel — no
+//! rounding to accumulate, no drift over any number of cycles. The position register wraps at
+//! 32 integer bits, so the sum is kept modulo 2⁶⁴ raw units, as the register is (and as the
+//! product of the whole travel would be). The velocity and acceleration are the differences
+//! (SPEC §5); a ratio change applies from the present position on, so the velocity jumps, as
+//! on the chip.
 //!
 //! The follower's speed is the ratio times the master's change in a cycle: it must stay below
 //! 2³⁰ counts per cycle (e.g. a master moving at most 2¹⁶ counts a cycle at the largest ratio,
@@ -71,17 +72,17 @@ enum Mode {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ElectronicGear {
     state: State,
-    /// The ratio in force, raw (1/2^16).
+    /// The ratio in force as the follower's travel per master count, I32F32 bits: the 16.16
+    /// register shifted left 16 (below 2^47), so a cycle multiplies once and shifts nothing.
     ratio: i64,
-    /// The follower's position when the ratio came in force, I32F32 bits.
-    anchor: i64,
-    /// The master's travel since then, counts, modulo 2^64.
-    travel: i64,
     /// The master's last count.
     master: i32,
     mode: Mode,
     /// The smooth stop's deceleration, I32F32 bits (the 16.16 register shifted left 16).
     deceleration: i64,
+    /// While stopping: the deceleration against the velocity's sign (added each cycle), worked
+    /// out when the stop is given, so a cycle does not decide the sign again.
+    braking: i64,
     /// The last cycle was an abrupt stop (exempt from the limits).
     exempt: bool,
 }
@@ -106,12 +107,11 @@ impl ElectronicGear {
         }
         Ok(Self {
             state: State::at_rest(slave_position),
-            ratio: i64::from(ratio.to_bits()),
-            anchor: slave_position.to_bits(),
-            travel: 0,
+            ratio: i64::from(ratio.to_bits()) << 16,
             master,
             mode: Mode::Engaged,
             deceleration: i64::from(deceleration.to_bits()) << 16,
+            braking: 0,
             exempt: false,
         })
     }
@@ -119,7 +119,7 @@ impl ElectronicGear {
     /// The ratio in force.
     pub fn ratio(&self) -> GearRatio {
         // Built from a register's raw value, so it converts back.
-        GearRatio::from_bits(self.ratio as i32).unwrap_or(GearRatio::ZERO)
+        GearRatio::from_bits((self.ratio >> 16) as i32).unwrap_or(GearRatio::ZERO)
     }
 
     /// Whether the gear follows its master (not stopped, nor stopping).
@@ -131,9 +131,7 @@ impl ElectronicGear {
     /// ratio of the master's travel from where it is (the velocity jumps). Re-engages a stopped
     /// or stopping gear.
     pub fn set_ratio(&mut self, ratio: GearRatio) {
-        self.ratio = i64::from(ratio.to_bits());
-        self.anchor = self.state.position.to_bits();
-        self.travel = 0;
+        self.ratio = i64::from(ratio.to_bits()) << 16;
         if self.mode != Mode::AbruptPending {
             self.mode = Mode::Engaged;
         }
@@ -151,6 +149,7 @@ impl ElectronicGear {
             });
         }
         self.deceleration = i64::from(deceleration.to_bits()) << 16;
+        self.braking = self.braking_now();
         Ok(())
     }
 
@@ -165,29 +164,24 @@ impl ElectronicGear {
         // The change modulo 2^32, as a signed count: the wrap undone.
         let change = i64::from(master.wrapping_sub(self.master));
         self.master = master;
-        self.travel = self.travel.wrapping_add(change);
         self.exempt = false;
         let velocity = match self.mode {
             Mode::Engaged => {
-                // anchor + ratio · travel, the product's 16 fractional bits moved to I32F32's
-                // 32: modulo 2^64 raw units, the position register's own wrap.
-                let position = self
-                    .anchor
-                    .wrapping_add(self.ratio.wrapping_mul(self.travel).wrapping_mul(1 << 16));
-                position.wrapping_sub(self.state.position.to_bits())
+                // The ratio times the change: a whole number of raw units, modulo 2^64 as the
+                // position register wraps (exact below the speed limit of the module docs).
+                self.ratio.wrapping_mul(change)
             }
             Mode::Stopping => {
                 let velocity = self.state.velocity.to_bits();
-                // Toward zero by the deceleration, never past it.
-                let next = if velocity > 0 {
-                    (velocity - self.deceleration).max(0)
-                } else {
-                    (velocity + self.deceleration).min(0)
-                };
-                if next == 0 {
+                // Toward zero by the deceleration, never past it: on zero or past it (the sign
+                // turned), at rest. The two have opposite signs, so the sum does not overflow.
+                let next = velocity + self.braking;
+                if next == 0 || (next ^ velocity) < 0 {
                     self.mode = Mode::Stopped;
+                    0
+                } else {
+                    next
                 }
-                next
             }
             Mode::AbruptPending => {
                 self.mode = Mode::Stopped;
@@ -214,6 +208,16 @@ impl ElectronicGear {
             (StopKind::Smooth, _) if self.state.velocity == I32F32::ZERO => Mode::Stopped,
             (StopKind::Smooth, _) => Mode::Stopping,
         };
+        self.braking = self.braking_now();
+    }
+
+    /// The deceleration against the present velocity's sign.
+    fn braking_now(&self) -> i64 {
+        if self.state.velocity > I32F32::ZERO {
+            -self.deceleration
+        } else {
+            self.deceleration
+        }
     }
 
     /// The limits of the last cycle: none while engaged (the follower follows, whatever the

@@ -158,6 +158,49 @@ fn stops_disengage_and_a_ratio_reengages() {
     }
 }
 
+/// A smooth stop takes the deceleration off the speed every cycle, in either direction, and
+/// lands on zero without passing it; a new deceleration given while stopping applies from the
+/// next cycle. By hand: ±1.5 × 10 counts a cycle = ±15 counts/cycle; at 2 counts/cycle² the
+/// speeds are 13, 11, 9, then at 0.5: 8.5, 8, …, 0.5, 0 (18 more cycles), then rest.
+#[test]
+fn a_smooth_stop_slows_by_the_deceleration_exactly_either_way() {
+    for sign in [1, -1] {
+        let mut gear = ElectronicGear::new(
+            GearRatio::from_num(1.5 * f64::from(sign)).unwrap(),
+            0,
+            I32F32::ZERO,
+            TrapezoidalAcceleration::from_num(2.0).unwrap(),
+        )
+        .unwrap();
+        let mut master = 0;
+        let mut follow = |gear: &mut ElectronicGear| {
+            master += 10;
+            gear.follow(master).velocity
+        };
+        for _ in 0..3 {
+            follow(&mut gear);
+        }
+        assert_eq!(gear.state().velocity, 15 * sign);
+        gear.stop(StopKind::Smooth);
+        let mut speeds = Vec::new();
+        for _ in 0..3 {
+            speeds.push(follow(&mut gear));
+        }
+        gear.set_deceleration(TrapezoidalAcceleration::from_num(0.5).unwrap())
+            .unwrap();
+        while !gear.is_complete() {
+            speeds.push(follow(&mut gear));
+        }
+        let expected: Vec<I32F32> = [13.0, 11.0, 9.0]
+            .into_iter()
+            .chain((0..18).map(|k| 8.5 - 0.5 * f64::from(k)))
+            .map(|speed| I32F32::from_num(speed * f64::from(sign)))
+            .collect();
+        assert_eq!(speeds, expected, "sign {sign}");
+        assert_eq!(follow(&mut gear), 0);
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(500))]
 

@@ -494,9 +494,39 @@ def measure_setups(probe: Probe, moves: list[tuple[int, int, int, int, int]]) ->
     return counts
 
 
+def measure_gear(probe: Probe) -> list[int]:
+    """Per-cycle counts of `ElectronicGear::follow` (SPEC §14), each cycle one call: engaged at
+    ratios from tiny to the register's extremes, with masters whose count moves by random steps
+    (wrapping past ±2³¹ too), then a smooth stop to rest, a new ratio, an abrupt stop and its
+    cycles at rest."""
+    import random
+    rng = random.Random(14)
+    counts = []
+    for ratio in (1, -1, 1 << 16, 3 << 15, -(5 << 14), 1_073_741_823, -1_073_741_824):
+        if probe.call("probe_gear_setup", ratio & 0xFFFF_FFFF, 1 << 20).r0:
+            raise ProbeFailure(f"gear ratio {ratio} refused")
+        master = rng.randrange(-(1 << 31), 1 << 31)
+        speed = rng.choice((1, 7, 1_000, 1 << 20))
+        def follow(cycles: int) -> None:
+            nonlocal master
+            for _ in range(cycles):
+                master = (master + rng.randrange(-speed, speed + 1) + (1 << 31)) % (1 << 32) - (1 << 31)
+                counts.append(probe.call("probe_gear_follow", master & 0xFFFF_FFFF).instructions)
+        follow(300)
+        probe.call("probe_gear_command", 0, 0)  # smooth stop: decelerate to rest
+        follow(2_000)
+        probe.call("probe_gear_command", 2, (ratio // 2) & 0xFFFF_FFFF)  # re-engaged
+        follow(300)
+        probe.call("probe_gear_command", 1, 0)  # abrupt stop
+        follow(20)
+    return counts
+
+
 def measure_other_generators(probe: Probe, moves: int) -> tuple[dict[str, list[int]], list[int]]:
-    """Per-cycle counts of VelocityContouring and Trapezoidal, and the trapezoid's set-up counts."""
-    steps: dict[str, list[int]] = {"VelocityContouring": [], "Trapezoidal": []}
+    """Per-cycle counts of VelocityContouring, Trapezoidal and ElectronicGear, and the trapezoid's
+    set-up counts."""
+    steps: dict[str, list[int]] = {"VelocityContouring": [], "Trapezoidal": [], "ElectronicGear": []}
+    steps["ElectronicGear"] = measure_gear(probe)
     for velocity, acceleration, deceleration in FIXED_VELOCITY_MOVES:
         if probe.call("probe_velocity_setup", velocity & 0xFFFF_FFFF, acceleration, deceleration).r0:
             raise ProbeFailure("velocity move refused")

@@ -11,6 +11,9 @@
 //! - `probe_plan(index)`: the same for move `index`, the move generated on the target too.
 //! - `probe_step_setup(...)`, `probe_phases(out)`, `probe_step()`: one generator in a static,
 //!   stepped one cycle per call, so every cycle's cost is measured on its own.
+//! - `probe_gear_setup(ratio, deceleration)`, `probe_gear_follow(master)`,
+//!   `probe_gear_command(command, value)`: an MC1451A electronic gear (`ElectronicGear`), one
+//!   `follow` per call with the master's count, and its stops and ratio changes.
 //! - `probe_velocity_setup(velocity, acceleration, deceleration)`, `probe_velocity_step()`:
 //!   the same for `VelocityContouring` (Juno registers as raw bits).
 //! - `probe_trapezoid_setup(words)` (destination, maximum velocity, acceleration, deceleration,
@@ -37,7 +40,10 @@ use core::mem::MaybeUninit;
 use core::panic::PanicInfo;
 use core::sync::atomic::{AtomicU32, Ordering};
 
-use profilegen::format::mc1451a::{Jerk, MaxVelocity, ScurveAcceleration};
+use profilegen::format::mc1451a::{
+    GearRatio, Jerk, MaxVelocity, ScurveAcceleration, TrapezoidalAcceleration,
+};
+use profilegen::gearing::ElectronicGear;
 use profilegen::format::juno::{Acceleration, TargetVelocity};
 use profilegen::format::{mcx514, CycleTime};
 use profilegen::interpolation::{
@@ -209,7 +215,63 @@ struct Other<T>(UnsafeCell<MaybeUninit<T>>);
 unsafe impl<T> Sync for Other<T> {}
 
 static VELOCITY: Other<VelocityContouring> = Other(UnsafeCell::new(MaybeUninit::uninit()));
+static GEAR: Other<ElectronicGear> = Other(UnsafeCell::new(MaybeUninit::uninit()));
 static TRAPEZOID: Other<Trapezoidal> = Other(UnsafeCell::new(MaybeUninit::uninit()));
+
+/// Sets up an MC1451A electronic gear (SPEC §14): ratio `ratio` (16.16 bits), the master's
+/// count 0, the follower at rest at 0, smooth-stop deceleration `deceleration` (raw); 0 on
+/// success, 1 when refused.
+#[no_mangle]
+pub extern "C" fn probe_gear_setup(ratio: i32, deceleration: u32) -> u32 {
+    let gear = || -> Result<ElectronicGear, Error> {
+        ElectronicGear::new(
+            GearRatio::from_bits(ratio)?,
+            0,
+            profilegen::fixed::types::I32F32::ZERO,
+            TrapezoidalAcceleration::from_bits(deceleration)?,
+        )
+    };
+    match gear() {
+        Ok(gear) => {
+            // SAFETY: single-threaded; no reference to the slot outlives a call.
+            unsafe { (*GEAR.0.get()).write(gear) };
+            0
+        }
+        Err(_) => 1,
+    }
+}
+
+/// One cycle of the gear with the master's count `master` (`ElectronicGear::follow`, the
+/// follower's cycle); returns the follower's position.
+///
+/// # Safety
+/// `probe_gear_setup` succeeded before.
+#[no_mangle]
+pub unsafe extern "C" fn probe_gear_follow(master: i32) -> i64 {
+    // SAFETY: initialized by probe_gear_setup (the caller's contract); single-threaded.
+    let gear = unsafe { (*GEAR.0.get()).assume_init_mut() };
+    gear.follow(master).position.to_bits()
+}
+
+/// Gives the gear a command: 0 a smooth stop, 1 an abrupt stop, 2 the new ratio `value` (16.16
+/// bits; refused values change nothing).
+///
+/// # Safety
+/// `probe_gear_setup` succeeded before.
+#[no_mangle]
+pub unsafe extern "C" fn probe_gear_command(command: u32, value: i32) {
+    // SAFETY: initialized by probe_gear_setup (the caller's contract); single-threaded.
+    let gear = unsafe { (*GEAR.0.get()).assume_init_mut() };
+    match command {
+        0 => gear.stop(profilegen::StopKind::Smooth),
+        1 => gear.stop(profilegen::StopKind::Abrupt),
+        _ => {
+            if let Ok(ratio) = GearRatio::from_bits(value) {
+                gear.set_ratio(ratio);
+            }
+        }
+    }
+}
 
 /// Sets up the stepped velocity-contouring generator from raw Juno registers; 0 on success,
 /// 1 when refused.
