@@ -655,7 +655,7 @@ mod tests {
             cruise in 0u64..800,
             counts in proptest::array::uniform4(0u64..4),
             early in proptest::array::uniform4(0u64..2),
-            share in 0.0f64..1.0,
+            share in 0u64..1_000_000,
             (area, available) in (0u64..5_000, 0u64..4),
         ) {
             prop_assume!(counts.iter().sum::<u64>() > 0 && a > 1);
@@ -671,10 +671,11 @@ mod tests {
             let early = core::array::from_fn(|k| early[k].min(counts[k]));
             let main = mix.main_move(c, early);
             let bounds = main.bounds();
-            // Remainders across what two pairs can take (< total²/2), the tests' floats only
-            // pick one.
-            let most = bounds.total * bounds.total / 2;
-            let left = ((most as f64 * share * share) as u64).max(2);
+            // Remainders across what two pairs can take (< total²/2), more of them small:
+            // the share squared, in millionths.
+            let most = u128::from(bounds.total * bounds.total / 2);
+            let share = u128::from(share);
+            let left = u64::try_from(most * share * share / 1_000_000_000_000).unwrap_or(2).max(2);
             let remainder = Remainder {
                 left,
                 main: &main,
