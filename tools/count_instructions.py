@@ -647,6 +647,33 @@ def step_line(probe: Probe, profile: str, finish: tuple[int, int, int], register
         raise ProbeFailure(f"line {finish} driven by {profile} {registers} ended at {axes}")
 
 
+def step_axis(probe: Probe, finish: tuple[int, int, int], registers: tuple, counts: list[int],
+              max_cycles: int = 20_000) -> None:
+    """Sets up the MCX514 trapezoid of a line alone (no geometry: a one-axis generator) and steps
+    it to its end (and 2 cycles more), each cycle's count to `counts`."""
+    words = [3, *finish, *registers]
+    words += [0] * (13 - len(words))
+    probe.uc.mem_write(SCRATCH_PAGE, struct.pack("<13I", *(w & 0xFFFF_FFFF for w in words)))
+    if probe.call("probe_line_setup", SCRATCH_PAGE).u64 == REFUSED:
+        raise ProbeFailure(f"axis {finish} {registers} refused")
+    for _ in range(max_cycles):
+        counts.append(probe.call("probe_axis_step_mcx514").instructions)
+        if probe.call("probe_axis_complete").r0:
+            break
+    else:
+        raise ProbeFailure(f"axis {registers}: not complete in {max_cycles} cycles")
+    counts += [probe.call("probe_axis_step_mcx514").instructions for _ in range(2)]
+
+
+def measure_mcx514_axis(probe: Probe, moves: int) -> list[int]:
+    """Per-cycle counts of the MCX514 trapezoid alone, over the lines' drives. (The MCX514 S-curve
+    is not measured alone: a second caller of its step changes how the line's is compiled.)"""
+    counts: list[int] = []
+    for finish, registers in [(MANUAL_LINE, r) for r in MANUAL_LINE_MCX514] + random_mcx514_lines(moves):
+        step_axis(probe, finish, registers, counts)
+    return counts
+
+
 def measure_lines(probe: Probe, moves: int) -> dict[str, list[int]]:
     """Per-cycle counts of a 3-axis line (profile plus geometry), per driving profile."""
     counts: dict[str, list[int]] = {profile: [] for profile in LINE_PROFILES}
@@ -1086,6 +1113,11 @@ def main() -> int:
         for name, counts_ in lines.items():
             print(f"  {'3-axis line, ' + name:26} max {max(counts_):4}, mean {statistics.fmean(counts_):6.1f} "
                   f"instructions ({len(counts_)} cycles)")
+        # The same drives without the geometry: the MCX514 trapezoid as a one-axis generator
+        # (SPEC §16's 40 per cycle; reported, not budgeted yet: issue #14).
+        alone = measure_mcx514_axis(probe, args.line_moves)
+        print(f"  {'Mcx514Trapezoidal alone':26} max {max(alone):4}, mean {statistics.fmean(alone):6.1f} "
+              f"instructions ({len(alone)} cycles; reported, not budgeted)")
         print(f"  ({time.monotonic() - lines_started:.1f} s)")
         print(f"== MCX514 circular interpolation, one call per cycle (profile and arc; the manual's "
               f"circle and {args.circle_moves} random ones, each to its end)")

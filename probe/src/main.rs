@@ -25,6 +25,8 @@
 //!   linear interpolation (SPEC §12.3) driven by one of the profiles (`mcx514` the MCX514
 //!   trapezoid, `trapezoid` the crate's `Trapezoidal`, `mcx514_scurve` the MCX514 S-curve), stepped one cycle per call through
 //!   `LinearInterpolation::step`: the measured cost is the profile plus the geometry (SPEC §16).
+//! - `probe_axis_step_mcx514()`, `probe_axis_complete()`: the MCX514 trapezoid alone (set up by
+//!   `probe_line_setup` with profile 3), its cycle as a one-axis generator's.
 //! - `probe_circle_setup(words)`, `probe_circle_step_<profile>()`, `probe_circle_complete(p)`,
 //!   `probe_circle_axes()`: an MCX514 circular interpolation (SPEC §12.4) driven by
 //!   `Mcx514Trapezoidal` or the crate's `Trapezoidal`; a step is the profile's cycle plus the
@@ -428,10 +430,14 @@ static LINE_MCX514_SCURVE_PROFILE: Other<Mcx514SCurve> =
 /// Which slot the last successful `probe_line_setup` filled: 0 MCX514, 1 trapezoid, 2 MCX514
 /// S-curve.
 static LINE_KIND: AtomicU32 = AtomicU32::new(u32::MAX);
+/// The MCX514 trapezoid alone (the driving axis as a one-axis generator, no geometry), set up
+/// by `probe_line_setup` with profile 3. (Not the MCX514 S-curve: a second caller of its step
+/// makes LLVM keep that step out of line, and the line's own count with it.)
+static AXIS_MCX514: Other<Mcx514Trapezoidal> = Other(UnsafeCell::new(MaybeUninit::uninit()));
 
 /// Sets up the stepped 3-axis line from `words`: `[0]` the profile (0 the MCX514 trapezoid,
-/// 1 the crate's `Trapezoidal`, 2 the MCX514 S-curve), `[1..4]` the finish point (pulses, `i32`
-/// bits), then
+/// 1 the crate's `Trapezoidal`, 2 the MCX514 S-curve; 3 the MCX514 trapezoid alone, for
+/// `probe_axis_step_mcx514`, no line), `[1..4]` the finish point (pulses, `i32` bits), then
 ///
 /// - MCX514: `[4]` the cycle time in µs, `[5]` SV, `[6]` DV (pps), `[7]` AC, `[8]` DC (pps/s),
 ///   `[9]` the deceleration mode (0 automatic, 1 manual at `[10]`, 2 disabled); the S-curve
@@ -469,11 +475,16 @@ pub unsafe extern "C" fn probe_line_setup(words: *const u32) -> u64 {
     };
     let cycle = || CycleTime::from_seconds(f64::from(word(4)) * 1e-6);
     match word(0) {
-        0 => {
+        0 | 3 => {
             let profile = || Mcx514Trapezoidal::new(mcx514()?, cycle()?);
             let Ok(profile) = profile() else {
                 return REFUSED;
             };
+            if word(0) == 3 {
+                // SAFETY: single-threaded; no reference to the slot outlives a call.
+                unsafe { (*AXIS_MCX514.0.get()).write(profile) };
+                return steps;
+            }
             // SAFETY: single-threaded; the profile lives in its static for as long as the line
             // that borrows it (both are replaced together, by the next set-up).
             let profile = unsafe { (*LINE_MCX514_PROFILE.0.get()).write(profile) };
@@ -571,6 +582,27 @@ pub unsafe extern "C" fn probe_line_step_mcx514_scurve() -> i64 {
     // SAFETY: initialized by probe_line_setup (the caller's contract); single-threaded.
     let line = unsafe { (*LINE_MCX514_SCURVE.0.get()).assume_init_mut() };
     output(line.step())
+}
+
+/// Advances the MCX514 trapezoid alone one cycle (a one-axis generator's cycle, SPEC §16).
+///
+/// # Safety
+/// `probe_line_setup` succeeded before with profile 3.
+#[no_mangle]
+pub unsafe extern "C" fn probe_axis_step_mcx514() -> i64 {
+    // SAFETY: initialized by probe_line_setup (the caller's contract); single-threaded.
+    let axis = unsafe { (*AXIS_MCX514.0.get()).assume_init_mut() };
+    axis.step().position.to_bits()
+}
+
+/// 1 when the MCX514 trapezoid set up alone last is complete, else 0.
+///
+/// # Safety
+/// `probe_line_setup` succeeded before with profile 3.
+#[no_mangle]
+pub unsafe extern "C" fn probe_axis_complete() -> u32 {
+    // SAFETY: initialized by probe_line_setup (the caller's contract); single-threaded.
+    u32::from(unsafe { (*AXIS_MCX514.0.get()).assume_init_ref() }.is_complete())
 }
 
 /// 1 when the line set up last is complete, else 0; the axes' positions in `out[0..3]`.
