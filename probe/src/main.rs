@@ -42,12 +42,12 @@ use core::mem::MaybeUninit;
 use core::panic::PanicInfo;
 use core::sync::atomic::{AtomicU32, Ordering};
 
+use profilegen::format::juno::{Acceleration, TargetVelocity};
 use profilegen::format::mc1451a::{
     GearRatio, Jerk, MaxVelocity, ScurveAcceleration, TrapezoidalAcceleration,
 };
-use profilegen::gearing::ElectronicGear;
-use profilegen::format::juno::{Acceleration, TargetVelocity};
 use profilegen::format::{mcx514, CycleTime};
+use profilegen::gearing::ElectronicGear;
 use profilegen::interpolation::{
     Arc, ArcWalk, CircularDriving, Direction, InterpolationState, Line, LinearInterpolation,
 };
