@@ -381,11 +381,12 @@ fn one_pair(
     (area, available): (u64, u64),
 ) -> Option<(u64, u64)> {
     debug_assert!(width == 1 || width == 2);
+    // Times the width by a shift: the spans are cycles of the move, far below 2^63.
     let shift = (width - 1) as u32;
-    let least = range.0.max(width + 1).checked_mul(width)?;
-    if range.0 > range.1 || range.1.checked_mul(width)? < left {
+    if range.0 > range.1 || range.1 << shift < left {
         return None; // no span in range, or the remainder is past the widest
     }
+    let least = range.0.max(width + 1) << shift;
     let mut q = match least.checked_sub(left) {
         Some(short) if short > 0 => {
             if area == 0 || available == 0 {
@@ -492,6 +493,9 @@ impl Remainder<'_> {
             };
             for width in 1..=widest {
                 let (first, second, range) = room.at(C::narrow(width));
+                if range.0 > range.1 {
+                    continue; // no span: one comparison in the narrow width
+                }
                 let Some((span, q)) = one_pair(left, width, widened(range), (area, available))
                 else {
                     continue;
