@@ -4,6 +4,7 @@
 mod bisect;
 #[cfg(feature = "conformance")]
 pub mod conformance;
+mod division;
 mod error;
 pub mod format;
 pub mod gearing;

@@ -466,6 +466,47 @@ proptest! {
         }
     }
 
+    /// A plan is its own per-cycle decision: planning again from any cycle of it (a command that
+    /// changes nothing) takes the same states to the end. Moves with a nearer destination given
+    /// in motion, often too near to stop at D (then, with a starting velocity above D, the plan
+    /// lands from the drop: `landing`), replanned at a random later cycle.
+    #[test]
+    fn a_plan_is_its_own_per_cycle_decision(
+        move_ in trapezoidal_move(),
+        gap in 1u64..3_000,
+        fraction in 0.2f64..1.5,
+        later in 0u64..3_000,
+    ) {
+        let mut axis = Trapezoidal::new(move_).unwrap();
+        for _ in 0..gap {
+            axis.step();
+        }
+        // A `fraction` of the stopping distance at D ahead of the axis (a float estimate).
+        let state = axis.state();
+        let speed = state.velocity.abs().to_num::<f64>();
+        let deceleration = if move_.deceleration.is_zero() { move_.acceleration.to_f64() } else { move_.deceleration.to_f64() };
+        // (Moves whose stop alone takes over 10^5 cycles are left to the other tests.)
+        prop_assume!(speed < deceleration * 1e5);
+        let offset = (fraction * (speed * speed / (2.0 * deceleration) + speed)) as i64;
+        let ahead = if state.velocity < 0 { -1 } else { 1 };
+        let destination = (state.position.to_num::<i64>() + ahead * offset)
+            .clamp(i32::MIN.into(), i32::MAX.into()) as i32;
+        axis.set_destination(destination);
+        for _ in 0..later {
+            axis.step();
+        }
+        let mut replanned = axis.clone();
+        replanned.set_destination(destination);
+        let mut cycles = 0u64;
+        while !axis.is_complete() {
+            prop_assert_eq!(axis.step(), replanned.step(), "cycle {}", cycles);
+            cycles += 1;
+            prop_assert!(cycles < 10_000_000, "never came to rest");
+        }
+        prop_assert!(replanned.is_complete());
+        prop_assert_eq!(axis.state().position, I32F32::from_num(destination));
+    }
+
     /// Random changes in motion: identities and limits on every cycle, and the axis always
     /// comes to rest exactly on the final destination (or, after a stop, at rest).
     #[test]

@@ -38,7 +38,6 @@
 //! raw units) try up to 24 more pairs of ramps around it first, which costs more. A step is at
 //! most 40 Cortex-M4 instructions.
 
-mod division;
 mod predict;
 mod remainder;
 mod schedule;

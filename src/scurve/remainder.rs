@@ -14,8 +14,8 @@
 //! remainder `E` in their range: `w·k₁ + (w + 1)·k₂ = E` is solved by
 //! `k₁ ≡ −E (mod w + 1)` ([`solve_spans`]), because `w ≡ −1` is its own inverse modulo `w + 1`.
 
-use super::division::{ceil_div, div, div_ceil, floor_div};
 use super::shape::{Bounds, MainMove};
+use crate::division::{ceil_div, div, div_ceil, floor_div};
 
 /// One notch pair: see the module docs.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

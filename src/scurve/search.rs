@@ -8,10 +8,10 @@
 //! the plan that wins. A last resort (two *fine units*, then ramps of one cycle) covers the few
 //! very short moves with a large jerk that notch pairs have no room in.
 
-use super::division::{div, div_ceil, div_rem};
 use super::remainder::{self, velocity_notch, Placement};
 use super::schedule::{Limits64, Schedule};
 use super::shape::{MainMove, Mix};
+use crate::division::{div, div_ceil, div_rem};
 
 /// `⌊∛n⌋`, bitwise (22 steps; no floating point, so every target computes the same plan).
 pub(super) fn cube_root(mut n: u64) -> u64 {

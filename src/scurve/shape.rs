@@ -15,7 +15,7 @@
 //! `(a, b)`, `(a, b − 1)`, `(a − 1, b)` and `(a − 1, b − 1)`, reaches the limits to the raw unit
 //! ([`Mix::solve`]).
 
-use super::division::{div, div_ceil, div_rem, rem};
+use crate::division::{div, div_ceil, div_rem, rem};
 
 /// One group of identical units: `count · tb(a, b, c)`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

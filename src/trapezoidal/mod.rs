@@ -108,12 +108,9 @@ enum Phase {
     /// Heading for the destination along a plan: stepping replays its runs.
     Run,
     /// Heading for the destination from a state no plan covers: each cycle decides from
-    /// scratch, then plans again. Two kinds are left: with a starting velocity above D, too
-    /// fast to stop on the destination after a change and not covered by the `landing` plan
-    /// (whether it covers a state does not settle along the cycles that slow down, so the end
-    /// of that run is not found ahead); moving away so far that the distance passes 2^31
-    /// counts. (A plan that ends in such a state runs as `Decide` from the start: its runs lead
-    /// to [`ELSEWHERE`].)
+    /// scratch, then plans again. One kind is left: moving away so far that the distance passes
+    /// 2^31 counts. (A plan that ends in such a state runs as `Decide` from the start: its runs
+    /// lead to [`ELSEWHERE`].)
     Decide,
     /// Smooth stop: decelerating to rest, destination abandoned.
     Stopping,
@@ -165,8 +162,8 @@ const MIN_DECELERATION: i64 = 1 << 8;
 /// Above the largest 8.24 rate as I32F32 bits ((2^31 − 1) << 8 < 2^39).
 const MAX_DECELERATION: i64 = 1 << 40;
 
-/// The slots of [`Trapezoidal::runs`]: a plan has at most eight runs (moving away from the
-/// destination and the cycle that turns, then accelerate, cruise, brake, bump, rest; or the five
+/// The slots of [`Trapezoidal::runs`]: a plan has at most nine runs (moving away from the
+/// destination and the cycle that turns, then accelerate, cruise, brake, bump, rest; or the six
 /// of a `landing` plan and rest), and slot [`ELSEWHERE`] stands for the phases that are not a
 /// plan. A power of two, so that `% RUNS` is a mask.
 const RUNS: usize = 16;
@@ -237,9 +234,9 @@ impl Layout {
 /// ([`crate::reference::trapezoidal_duration`]) on most moves; on the rest (about 2 % of random
 /// moves with a starting velocity) no plan can be, as the discrete limits cost up to half a cycle
 /// more, and it is within 2.5 (`tests/trapezoidal.rs`, `fewest_moving_cycles`). A command in
-/// motion plans that way again from the present state when the axis can slow down into it, and
-/// by the per-cycle rule otherwise (then, when the axis is too fast to stop on the destination
-/// within D, cycle by cycle: see `Phase::Decide`).
+/// motion plans that way again from the present state, the fewest cycles from it (its first
+/// slowing down by at most D); when the axis is too fast for any plan to land, it slows down by
+/// D until it has passed the destination, then turns back.
 ///
 /// ```
 /// use profilegen::format::juno::{Acceleration, TargetVelocity};
@@ -748,6 +745,14 @@ impl Trapezoidal {
             if ahead < 0 {
                 return self.plan_turn(layout, distance, ahead, sign);
             }
+            // With a starting velocity above D the landing covers every state any plan lands
+            // from; the rest pass the destination, slowing down by D (`slowing_run`).
+            if self.profile.start_velocity > self.profile.deceleration
+                && ahead <= self.profile.max_velocity
+                && self.push_landing(layout, distance, ahead, sign)
+            {
+                return true;
+            }
             let Some((next, increment, count)) = self.slowing_run(distance.unsigned_abs(), ahead)
             else {
                 return self.plan_from(layout, distance, ahead, sign);
@@ -781,8 +786,11 @@ impl Trapezoidal {
     /// - At most V, but `T(v − D)` > the distance (a nearer destination or a smaller D): the rule
     ///   takes `v − D` (the braking velocity is below it), and that leaves the same situation
     ///   (`T(v − 2D) = T(v − D) − (v − D)`) while the velocity stays above D. With a starting
-    ///   velocity above D the `landing` plan may cover such a state: those are left to the
-    ///   per-cycle rule (`None` here, `Decide` in [`Self::plan_from`]).
+    ///   velocity above D the `landing` plan covers every state from which any plan lands
+    ///   ([`Self::plan_into`] asks it first), and a state it does not cover is of this kind
+    ///   (the rule's own plan, which lands with a drop ≤ D, would otherwise do); slowing down by
+    ///   D leads to others of the same kind (a plan from the state after such a cycle would
+    ///   land from this one too), so they pass the destination, as above.
     ///
     /// Either run also ends after the cycle that passes the destination (the frame turns
     /// round): distance left `d_j = d − j·v + D·j(j + 1)/2` after `j` cycles, decreasing while
@@ -791,7 +799,6 @@ impl Trapezoidal {
         let Profile {
             max_velocity,
             deceleration,
-            start_velocity,
             ..
         } = self.profile;
         let cycles = if velocity > max_velocity {
@@ -803,8 +810,7 @@ impl Trapezoidal {
             }
             cycles
         } else {
-            if start_velocity > deceleration
-                || velocity <= deceleration
+            if velocity <= deceleration
                 || Self::stopping_distance(velocity - deceleration, deceleration)
                     <= i128::from(distance)
             {
@@ -887,6 +893,11 @@ impl Trapezoidal {
         if !(0..=max_velocity).contains(&velocity) {
             return false;
         }
+        if start_velocity > deceleration && self.push_landing(layout, distance, velocity, sign) {
+            // The drop from the starting velocity is more than D: the landing is planned with
+            // the move (`landing`).
+            return true;
+        }
         // |distance| ≤ 2^63; in i128 throughout the search.
         let distance = i128::from(distance.unsigned_abs());
         // Turns a run of the frame where the destination lies ahead round to the axis.
@@ -895,18 +906,6 @@ impl Trapezoidal {
             increment: (increment ^ sign) - sign,
             count,
         };
-        if start_velocity > deceleration && distance > 0 {
-            // The drop from the starting velocity is more than D: the landing is planned with
-            // the move (`landing`), unless the axis is too fast for that plan's first cycle.
-            if let Some(runs) = self.landing(distance, velocity) {
-                let [a, b, c, d, e] =
-                    runs.map(|(next, increment, count)| ahead(next, increment, count));
-                for run in [a, b, c, d, e, Run::REST] {
-                    layout.push(run);
-                }
-                return true;
-            }
-        }
         let base = if velocity == 0 {
             start_velocity
         } else {
@@ -995,22 +994,36 @@ impl Trapezoidal {
         true
     }
 
-    /// [`landing::plan`] with the profile in force.
-    fn landing(&self, distance: i128, velocity: i64) -> Option<[landing::Run; 5]> {
+    /// Appends the runs of [`landing::plan`] with the profile in force, from a state `distance`
+    /// ahead (I32F32 bits, signed as the axis) moving at `velocity` (0 … V) in the frame of
+    /// `sign` (the direction mask), and rest: `true`, or `false` (nothing appended) when no plan
+    /// lands.
+    fn push_landing(&self, layout: &mut Layout, distance: i64, velocity: i64, sign: i64) -> bool {
         let Profile {
             max_velocity,
             acceleration,
             deceleration,
             start_velocity,
         } = self.profile;
-        landing::plan(
-            distance,
+        let Some(runs) = landing::plan(
+            i128::from(distance.unsigned_abs()),
             velocity,
             max_velocity,
             acceleration,
             deceleration,
             start_velocity,
-        )
+        ) else {
+            return false;
+        };
+        for (next, increment, count) in runs {
+            layout.push(Run {
+                next: (next ^ sign) - sign,
+                increment: (increment ^ sign) - sign,
+                count,
+            });
+        }
+        layout.push(Run::REST);
+        true
     }
 
     /// Lays out the runs of a plan that are not empty, from slot `at` when it is 0, or so that

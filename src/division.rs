@@ -1,8 +1,9 @@
 //! Division of 64-bit integers that takes the 32-bit instruction where the operands fit.
 //!
 //! On a Cortex-M4 a 64-bit division is a library call of about 80 instructions, a 32-bit one a
-//! single `udiv`/`sdiv`; most of the planner's quotients (ramp lengths, unit counts, spans) have
-//! both operands under 2^32, so checking costs a few instructions and saves the call. The
+//! single `udiv`/`sdiv`; most of the S-curve planner's quotients (ramp lengths, unit counts,
+//! spans) have both operands under 2^32, so checking costs a few instructions and saves the
+//! call, and the trapezoid's landing divides by its rates in every step of its searches. The
 //! results are the same as the 64-bit operators', panics on a zero divisor included. A 64-bit
 //! dividend by a 32-bit divisor takes a long division in 32-bit steps, and a divisor of 64 bits
 //! one such step on its top half, each about half the library's cost.
@@ -10,14 +11,14 @@
 /// `(⌊n / d⌋, n mod d)`: the hardware's own division on a 64-bit target.
 #[cfg(target_pointer_width = "64")]
 #[inline]
-pub(super) fn div_rem(n: u64, d: u64) -> (u64, u64) {
+pub(crate) fn div_rem(n: u64, d: u64) -> (u64, u64) {
     (n / d, n % d)
 }
 
 /// `(⌊n / d⌋, n mod d)`.
 #[cfg(not(target_pointer_width = "64"))]
 #[inline]
-pub(super) fn div_rem(n: u64, d: u64) -> (u64, u64) {
+pub(crate) fn div_rem(n: u64, d: u64) -> (u64, u64) {
     match (u32::try_from(n), u32::try_from(d)) {
         (Ok(n), Ok(d)) => (u64::from(n / d), u64::from(n % d)),
         (Err(_), Ok(d)) if d != 0 => by_narrow(n, d),
@@ -28,20 +29,20 @@ pub(super) fn div_rem(n: u64, d: u64) -> (u64, u64) {
 
 /// `⌊n / d⌋`.
 #[inline]
-pub(super) fn div(n: u64, d: u64) -> u64 {
+pub(crate) fn div(n: u64, d: u64) -> u64 {
     div_rem(n, d).0
 }
 
 /// `⌈n / d⌉`.
 #[inline]
-pub(super) fn div_ceil(n: u64, d: u64) -> u64 {
+pub(crate) fn div_ceil(n: u64, d: u64) -> u64 {
     let (quotient, remainder) = div_rem(n, d);
     quotient + u64::from(remainder != 0)
 }
 
 /// `n mod d`.
 #[inline]
-pub(super) fn rem(n: u64, d: u64) -> u64 {
+pub(crate) fn rem(n: u64, d: u64) -> u64 {
     div_rem(n, d).1
 }
 
@@ -128,7 +129,7 @@ fn narrow_step(high: u32, low: u32, d: u32) -> (u32, u32) {
 
 /// `⌊n / d⌋` for signed `n` and `d > 0`.
 #[inline]
-pub(super) fn floor_div(n: i64, d: i64) -> i64 {
+pub(crate) fn floor_div(n: i64, d: i64) -> i64 {
     match (i32::try_from(n), i32::try_from(d)) {
         (Ok(n), Ok(d)) => i64::from(n.div_euclid(d)),
         _ => n.div_euclid(d),
@@ -137,8 +138,45 @@ pub(super) fn floor_div(n: i64, d: i64) -> i64 {
 
 /// `⌈n / d⌉` for signed `n` and `d > 0`.
 #[inline]
-pub(super) fn ceil_div(n: i64, d: i64) -> i64 {
+pub(crate) fn ceil_div(n: i64, d: i64) -> i64 {
     -floor_div(-n, d)
+}
+
+/// Division by a divisor fixed for many quotients (a rate of the plan, while its searches run):
+/// one multiplication by a precomputed reciprocal and at most two corrections, where a 64-bit
+/// division is a library call of a few hundred instructions on a 32-bit core.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Reciprocal {
+    divisor: u64,
+    /// ⌊(2^64 − 1) / divisor⌋.
+    inverse: u64,
+}
+
+impl Reciprocal {
+    /// The reciprocal of `divisor` (≥ 1): one 64-bit division.
+    pub(crate) fn new(divisor: u64) -> Self {
+        Self {
+            divisor,
+            inverse: u64::MAX / divisor,
+        }
+    }
+
+    /// `⌊n / divisor⌋`, for every `n`.
+    ///
+    /// With r = ⌊(2^64 − 1) / d⌋ > (2^64 − 1) / d − 1, the estimate q = ⌊n·r / 2^64⌋ is at most
+    /// ⌊n / d⌋ (n·r < n·2^64 / d) and more than n / d − (n + n / d) / 2^64 − 1 ≥ n / d − 3, so
+    /// it is short by at most two: the remainder n − q·d (exact in 64 bits, as q·d ≤ n) says
+    /// how many.
+    #[inline]
+    pub(crate) fn divide(self, n: u64) -> u64 {
+        let mut quotient = ((u128::from(n) * u128::from(self.inverse)) >> 64) as u64;
+        let mut remainder = n - quotient * self.divisor;
+        while remainder >= self.divisor {
+            quotient += 1;
+            remainder -= self.divisor;
+        }
+        quotient
+    }
 }
 
 #[cfg(test)]
@@ -157,6 +195,11 @@ mod tests {
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(20_000))]
+
+        #[test]
+        fn a_reciprocal_divides_as_the_operator(n in operand(), d in operand().prop_map(|d| d.max(1))) {
+            prop_assert_eq!(Reciprocal::new(d).divide(n), n / d);
+        }
 
         #[test]
         fn the_same_as_the_64_bit_operators(n in operand(), d in operand().prop_map(|d| d.max(1))) {
