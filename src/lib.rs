@@ -12,6 +12,7 @@ pub mod interpolation;
 mod mcx514;
 pub mod predict;
 pub mod reference;
+mod replay;
 mod scurve;
 mod state;
 pub mod steps;

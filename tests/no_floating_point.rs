@@ -48,9 +48,19 @@ const SOURCES: &[(&str, &str)] = &[
     ("src/waveform.rs", include_str!("../src/waveform.rs")),
     ("src/mcx514/mod.rs", include_str!("../src/mcx514/mod.rs")),
     (
-        "src/mcx514/trapezoidal.rs",
-        include_str!("../src/mcx514/trapezoidal.rs"),
+        "src/mcx514/trapezoidal/mod.rs",
+        include_str!("../src/mcx514/trapezoidal/mod.rs"),
     ),
+    (
+        "src/mcx514/trapezoidal/rule.rs",
+        include_str!("../src/mcx514/trapezoidal/rule.rs"),
+    ),
+    (
+        "src/mcx514/trapezoidal/plan.rs",
+        include_str!("../src/mcx514/trapezoidal/plan.rs"),
+    ),
+    ("src/replay.rs", include_str!("../src/replay.rs")),
+    ("src/division.rs", include_str!("../src/division.rs")),
     (
         "src/mcx514/scurve.rs",
         include_str!("../src/mcx514/scurve.rs"),

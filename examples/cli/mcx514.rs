@@ -481,10 +481,11 @@ fn blame(given: &[(String, String)], error: &Error) -> String {
     }
 }
 
-/// The driving axis's profile: the MCX514 trapezoid, or its S-curve.
+/// The driving axis's profile: the MCX514 trapezoid (boxed: its cycles laid out ahead make it
+/// the larger), or its S-curve.
 #[derive(Debug, Clone)]
 pub enum Profile {
-    Trapezoidal(Mcx514Trapezoidal),
+    Trapezoidal(Box<Mcx514Trapezoidal>),
     SCurve(Mcx514SCurve),
 }
 
@@ -499,7 +500,7 @@ impl Profile {
         cycle: CycleTime,
     ) -> Result<Self, Error> {
         Ok(match jerks {
-            None => Profile::Trapezoidal(Mcx514Trapezoidal::new(parameters, cycle)?),
+            None => Profile::Trapezoidal(Box::new(Mcx514Trapezoidal::new(parameters, cycle)?)),
             Some((jerk, deceleration_jerk)) => Profile::SCurve(Mcx514SCurve::new(
                 Mcx514ScurveParameters {
                     trapezoid: parameters,
@@ -513,7 +514,7 @@ impl Profile {
 
     fn axis(&mut self) -> &mut dyn ProfileGenerator {
         match self {
-            Profile::Trapezoidal(axis) => axis,
+            Profile::Trapezoidal(axis) => axis.as_mut(),
             Profile::SCurve(axis) => axis,
         }
     }

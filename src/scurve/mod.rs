@@ -50,7 +50,7 @@ use fixed::types::I32F32;
 use crate::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
 use crate::state::{Limits, ProfileGenerator, State, StopKind};
 use crate::Error;
-use schedule::{Limits64, Schedule, SENTINEL};
+use schedule::{Limits64, Schedule, ABRUPT_LEVEL_OFF, ABRUPT_REST, SENTINEL};
 
 /// The parameters of an S-curve move, in MC1451A register formats.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -134,11 +134,14 @@ pub struct SCurve {
     /// A correction to the jerk that the next event takes back (a move started right after an
     /// abrupt stop starts from that cycle's acceleration).
     offset: i64,
+    /// The phase, as the last command or slow-path event left it (an abrupt stop's cycles do
+    /// not update it: [`Self::motion`] reads it with them).
     motion: Motion,
     /// +1 or −1: the direction of the move.
     direction: i64,
-    /// The last step was an abrupt stop (exempt from the limits).
-    exempt: bool,
+    /// An abrupt stop's second cycle's jerk, which levels the drop's acceleration off: the
+    /// velocity the stop dropped (up to 2^48 raw, more than the schedule's 32-bit jerks hold).
+    level_off: i64,
     /// After a stop the velocity register reads zero (SPEC §9).
     velocity_cleared: bool,
     parameters: ScurveParameters,
@@ -268,7 +271,7 @@ impl SCurve {
             offset: 0,
             motion: Motion::Rest,
             direction: 1,
-            exempt: false,
+            level_off: 0,
             velocity_cleared: false,
             parameters,
             limits,
@@ -427,9 +430,22 @@ impl SCurve {
         })
     }
 
+    /// The phase: as [`Self::motion`]'s field says, but at rest once an abrupt stop's cycle (the
+    /// drop to zero velocity) has been stepped.
+    fn motion(&self) -> Motion {
+        match self.motion {
+            Motion::AbruptPending if self.next_change != ABRUPT_LEVEL_OFF => Motion::Rest,
+            motion => motion,
+        }
+    }
+
+    /// The last step was an abrupt stop's drop, exempt from the limits (SPEC §9).
+    fn exempt(&self) -> bool {
+        self.motion == Motion::AbruptPending && self.next_change == ABRUPT_REST
+    }
+
     /// Starts the planned move (or rests, if it is empty) on the next step.
     fn start(&mut self) {
-        self.exempt = false;
         self.offset = 0;
         if self.schedule.plan.total == 0 {
             self.rest();
@@ -467,7 +483,6 @@ impl SCurve {
     #[cold]
     #[inline(never)]
     fn event(&mut self) {
-        self.exempt = false;
         let (acceleration, velocity) = (
             self.state.acceleration.to_bits(),
             self.state.velocity.to_bits(),
@@ -498,13 +513,8 @@ impl SCurve {
                     self.slow_down();
                 }
             }
-            Motion::AbruptPending => {
-                self.exempt = true;
-                self.motion = Motion::Rest;
-                self.jerk = -acceleration;
-                self.countdown = 1;
-            }
-            Motion::Rest => self.rest(),
+            // (An abrupt stop's cycles are replayed by the fast path of `step`.)
+            Motion::AbruptPending | Motion::Rest => self.rest(),
         }
     }
 
@@ -582,6 +592,18 @@ impl ProfileGenerator for SCurve {
                     self.countdown = change.hold;
                     self.next_change = next + 1;
                 }
+                // Past the schedule, an abrupt stop's cycles: the one after the drop levels the
+                // acceleration off (its jerk too wide for the schedule's arrays), then rest.
+                None if next == ABRUPT_LEVEL_OFF => {
+                    self.jerk = self.level_off;
+                    self.countdown = 1;
+                    self.next_change = ABRUPT_REST;
+                }
+                None if next == ABRUPT_REST => {
+                    self.jerk = 0;
+                    self.countdown = u64::MAX;
+                    self.next_change = ABRUPT_REST + 1;
+                }
                 None => self.event(),
             }
         }
@@ -598,7 +620,8 @@ impl ProfileGenerator for SCurve {
     /// otherwise start its jerk from that acceleration and break the jerk limit (found by the
     /// scripted tests of issue #17).
     fn is_complete(&self) -> bool {
-        (self.motion == Motion::Rest && (self.state.acceleration == I32F32::ZERO || self.exempt))
+        (self.motion() == Motion::Rest
+            && (self.state.acceleration == I32F32::ZERO || self.exempt()))
             || self.arrived()
     }
 
@@ -614,7 +637,7 @@ impl ProfileGenerator for SCurve {
             self.motion = Motion::Rest;
             self.next_change = SENTINEL;
         }
-        match (kind, self.motion) {
+        match (kind, self.motion()) {
             (_, Motion::Rest) | (StopKind::Smooth, Motion::Stopping | Motion::AbruptPending) => {}
             // Not moved yet (a stop before the first step of a move): at rest already.
             (StopKind::Smooth, Motion::Planned) if velocity == 0 => self.rest(),
@@ -624,11 +647,14 @@ impl ProfileGenerator for SCurve {
                 self.lay_out_stop();
             }
             (StopKind::Abrupt, _) => {
-                self.next_change = SENTINEL;
+                // The next step's acceleration is the whole drop to zero velocity, the one after
+                // levels it off (a jerk of the velocity dropped), then rest: replayed by the
+                // fast path of `step`.
                 self.motion = Motion::AbruptPending;
-                // The next step's acceleration is the whole drop to zero velocity.
                 self.jerk = -velocity - acceleration;
                 self.countdown = 1;
+                self.next_change = ABRUPT_LEVEL_OFF;
+                self.level_off = velocity;
             }
         }
     }
@@ -641,7 +667,7 @@ impl ProfileGenerator for SCurve {
             max_slow_down: acceleration,
             max_acceleration: acceleration,
             max_jerk: Some(I32F32::from_bits(self.limits.jerk as i64)),
-            exempt: self.exempt,
+            exempt: self.exempt(),
         }
     }
 }

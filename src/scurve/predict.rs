@@ -45,7 +45,7 @@ impl SCurve {
                 count += 1;
             }
         };
-        match self.motion {
+        match self.motion() {
             // Its one cycle (velocity zero, position held), then rest.
             Motion::AbruptPending => {
                 push(Piece::constant(0, 1));
@@ -82,7 +82,7 @@ impl SCurve {
                 });
                 // Each later run continues from the state the closed forms lead to; the end
                 // marker, last, holds the rest for ever (a smooth stop's is the arrays' last).
-                let end = if self.motion == Motion::Stopping {
+                let end = if self.motion() == Motion::Stopping {
                     SENTINEL
                 } else {
                     self.schedule.len()

@@ -30,6 +30,13 @@ pub(super) const MAX_CHANGES: usize = 45;
 /// it takes the slow path on its next event.
 pub(super) const SENTINEL: usize = MAX_CHANGES;
 
+/// Past the sentinel, the changes of an abrupt stop the fast path replays (they are not the
+/// schedule's: [`super::SCurve`] keeps the one jerk they need, too wide for the arrays): the
+/// cycle after the drop, which levels the acceleration off, then rest.
+pub(super) const ABRUPT_LEVEL_OFF: usize = SENTINEL + 1;
+/// Rest after an abrupt stop (jerk zero for ever).
+pub(super) const ABRUPT_REST: usize = SENTINEL + 2;
+
 /// At most this many changes of the main move (see [`MAX_CHANGES`]): 20 with notch pairs, 30
 /// with fine units.
 const MAX_MAIN_CHANGES: usize = 30;

@@ -9,6 +9,7 @@ use fixed::types::I32F32;
 
 use crate::bisect::last_true;
 use crate::format::juno::{Acceleration, TargetVelocity};
+use crate::replay::{End, Replay};
 use crate::state::{advance, Limits, ProfileGenerator, State, StopKind};
 use crate::Error;
 
@@ -135,6 +136,11 @@ struct Run {
 }
 
 impl Run {
+    /// The run as it is replayed ([`Replay`]: the same cycles).
+    const fn replay(&self) -> Replay {
+        Replay::new(self.next, self.increment, self.count)
+    }
+
     /// An empty run, left out of a plan.
     const NONE: Self = Self {
         next: 0,
@@ -147,12 +153,6 @@ impl Run {
         next: 0,
         increment: 0,
         count: u64::MAX,
-    };
-    /// The one-cycle run in slot [`ELSEWHERE`]: its cycle is [`Trapezoidal::step_otherwise`]'s.
-    const ELSEWHERE: Self = Self {
-        next: 0,
-        increment: 0,
-        count: 1,
     };
 }
 
@@ -260,7 +260,7 @@ pub struct Trapezoidal {
     current: usize,
     /// The plan's runs in order, worked out when the plan is made, so the cycle that ends one
     /// run only moves on to the next (the last run, at rest, never ends), and [`ELSEWHERE`].
-    runs: [Run; RUNS],
+    runs: [Replay; RUNS],
     state: State,
     phase: Phase,
     parameters: TrapezoidalParameters,
@@ -301,7 +301,7 @@ impl Trapezoidal {
         let profile = parameters.profile()?;
         let mut generator = Self {
             current: 0,
-            runs: [Run::NONE; RUNS],
+            runs: [Replay::new(0, 0, 0); RUNS],
             state: State::at_rest(position),
             phase: Phase::Run,
             parameters,
@@ -604,7 +604,7 @@ impl Trapezoidal {
         };
         let planner = Self {
             current: 0,
-            runs: [Run::NONE; RUNS],
+            runs: [Replay::new(0, 0, 0); RUNS],
             state: State::at_rest(I32F32::ZERO),
             phase: Phase::Run,
             parameters,
@@ -1035,20 +1035,20 @@ impl Trapezoidal {
             .iter_mut()
             .zip(runs.iter().filter(|run| run.count != 0))
         {
-            *to = *run;
+            *to = run.replay();
             slot += 1;
         }
         let first = at.saturating_sub(slot);
         if first != 0 {
             self.runs.copy_within(0..slot, first);
         }
-        self.runs[ELSEWHERE] = Run::ELSEWHERE;
+        self.runs[ELSEWHERE] = Replay::elsewhere();
         self.current = first;
     }
 
     /// The next step goes to [`Self::step_otherwise`].
     fn elsewhere(&mut self) {
-        self.runs[ELSEWHERE] = Run::ELSEWHERE;
+        self.runs[ELSEWHERE] = Replay::elsewhere();
         self.current = ELSEWHERE;
     }
 
@@ -1106,17 +1106,13 @@ impl ProfileGenerator for Trapezoidal {
     fn step(&mut self) -> State {
         // `% RUNS` is free (`current` < RUNS) and spares the bounds check.
         let current = self.current % RUNS;
-        let run = &mut self.runs[current];
-        let velocity = run.next;
-        // Every velocity of a run lies within ± the maximum velocity: no overflow.
-        run.next = velocity + run.increment;
-        run.count -= 1;
-        if run.count == 0 {
-            if current == ELSEWHERE {
-                return self.step_otherwise();
-            }
+        let (velocity, end) = self.runs[current].take();
+        match end {
+            End::No => {}
             // The run's last cycle: the next run is already laid out.
-            self.current = current + 1;
+            End::Run => self.current = current + 1,
+            End::Lap if current == ELSEWHERE => return self.step_otherwise(),
+            End::Lap => self.runs[current].lap(),
         }
         advance(&mut self.state, I32F32::from_bits(velocity))
     }

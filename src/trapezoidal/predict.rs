@@ -3,14 +3,13 @@
 
 use crate::predict::{Piece, Prediction, MAX_SEGMENTS};
 
-use super::{Phase, Run, Trapezoidal, ELSEWHERE, RUNS};
+use super::{Phase, Trapezoidal, ELSEWHERE, RUNS};
+use crate::replay::Replay;
 
-impl Run {
-    /// The rest run (velocity zero "for ever"): its count starts at `u64::MAX` and falls by one
-    /// per step, which no move lives long enough to bring below 2^63.
-    fn is_rest(&self) -> bool {
-        self.next == 0 && self.increment == 0 && self.count >= 1 << 63
-    }
+/// Whether `run` is the rest run (velocity zero "for ever"): its count starts at `u64::MAX` and
+/// falls by one per step, which no move lives long enough to bring below 2^63.
+fn is_rest(run: &Replay) -> bool {
+    run.next() == 0 && run.increment() == 0 && run.cycles() >= 1 << 63
 }
 
 impl Trapezoidal {
@@ -62,8 +61,8 @@ impl Trapezoidal {
                 // A plan that ends in a decision: not predicted.
                 return None;
             }
-            pieces[count] = Piece::run(run.next, run.increment, run.count);
-            if run.is_rest() {
+            pieces[count] = Piece::run(run.next(), run.increment(), run.cycles());
+            if is_rest(run) {
                 return Prediction::new(self.state, &pieces[..=count]);
             }
         }

@@ -1,5 +1,9 @@
 //! The MCX514's trapezoidal acceleration/deceleration on the driving axis (SPEC §12.2); see
-//! [`Mcx514Trapezoidal`].
+//! [`Mcx514Trapezoidal`]. The rule of one cycle is [`rule`]; the cycles laid out ahead with
+//! it, so that stepping replays them, [`plan`].
+
+mod plan;
+mod rule;
 
 use fixed::types::I32F32;
 
@@ -7,8 +11,11 @@ use crate::format::mcx514::{
     Acceleration, Deceleration, DriveSpeed, FinishPoint, InitialSpeed, ManualDecelerationPoint,
 };
 use crate::format::CycleTime;
+use crate::replay::End;
 use crate::state::{advance, Limits, ProfileGenerator, State, StopKind};
 use crate::Error;
+use plan::{Layout, ELSEWHERE, RUNS};
+use rule::{Phase, Rule};
 
 /// When the driving axis starts to decelerate (SPEC §12.2).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -41,7 +48,7 @@ pub struct Mcx514Parameters {
 
 /// The parameters converted to per-cycle raw I32F32 bits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct PerCycle {
+pub(super) struct PerCycle {
     /// The finish point, raw I32F32 pulses.
     finish: i64,
     initial: i64,
@@ -58,22 +65,6 @@ struct PerCycle {
     disabled: bool,
     /// max(DC, SV): a larger drop in one cycle is exempt (a late finish, an abrupt stop).
     largest_drop: i64,
-}
-
-/// Where the move is; each phase has its own one-comparison test for what ends it. The trigger
-/// is `i64::MAX` while decelerating, so the test for deceleration needs no phase.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Phase {
-    /// At rest before the first cycle.
-    Start,
-    /// Speeding up by AC toward DV.
-    Accelerating,
-    /// At DV (deceleration disabled: from the first cycle).
-    Cruising,
-    /// Slowing down by DC toward SV.
-    Decelerating,
-    /// At SV after the deceleration (the chip's creep), until the finish point or a stop.
-    Creeping,
 }
 
 /// The MCX514's trapezoidal acceleration/deceleration on the driving axis (SPEC §12.2), cycle by
@@ -98,6 +89,10 @@ enum Phase {
 /// stops from there (the chip's decelerating stop); an abrupt stop drops to zero on the next
 /// cycle. The S-curve is [`Mcx514SCurve`](crate::Mcx514SCurve).
 ///
+/// The move and every command (a stop, a new finish point of a continuous interpolation) lay
+/// the cycles out ahead, as at most 13 runs of constant velocity change, and a step replays
+/// them: one addition and a countdown (SPEC §16).
+///
 /// ```
 /// use profilegen::format::mcx514::{Acceleration, Deceleration, DriveSpeed, InitialSpeed};
 /// use profilegen::format::CycleTime;
@@ -121,21 +116,13 @@ enum Phase {
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Mcx514Trapezoidal {
-    profile: PerCycle,
+    // The per-cycle fields first.
+    /// The run under way: an index into `plan.runs` (always below [`RUNS`]).
+    current: usize,
     state: State,
-    phase: Phase,
-    /// The position (raw I32F32) at or past which a cycle that begins there starts to
-    /// decelerate: the manual point; with automatic deceleration, while speeding up, half the
-    /// finish point (rounded up: the pulses left, finish − p, are then ≤ the pulses output while
-    /// speeding up, p), and once at DV, the finish point less those pulses. `i64::MAX`: never,
-    /// and while decelerating (nothing to start then).
-    trigger: i64,
-    /// A smooth stop was commanded: decelerate to SV, then stop.
-    stopping: bool,
-    complete: bool,
-    /// The velocity the last cycle wanted (raw I32F32) before the cut to the pulses left: what
-    /// [`limits`](ProfileGenerator::limits) tells the ends of the move by, off the per-cycle path.
-    wanted: i64,
+    /// The cycles until the next command, and the rule's state before each run.
+    plan: Layout,
+    profile: PerCycle,
 }
 
 impl Mcx514Trapezoidal {
@@ -201,9 +188,7 @@ impl Mcx514Trapezoidal {
             disabled: parameters.deceleration_mode == DecelerationMode::Disabled,
             largest_drop: deceleration.max(initial),
         };
-        Ok(Self {
-            profile,
-            state: State::default(),
+        let rule = Rule {
             phase: Phase::Start,
             // While speeding up (automatic): 2p ≥ finish, i.e. p ≥ ⌈finish/2⌉.
             trigger: if automatic {
@@ -213,7 +198,12 @@ impl Mcx514Trapezoidal {
             },
             stopping: false,
             complete: finish == 0,
-            wanted: 0,
+        };
+        Ok(Self {
+            current: 0,
+            state: State::default(),
+            plan: Layout::new(&profile, rule, 0, 0),
+            profile,
         })
     }
 
@@ -228,8 +218,9 @@ impl Mcx514Trapezoidal {
         let finish = i64::from(pulses) << 32;
         let position = self.state.position.to_bits();
         let moved = position != 0 || self.state.velocity != I32F32::ZERO;
-        if (self.complete && moved)
-            || self.stopping
+        let mut rule = self.rule();
+        if (rule.complete && moved)
+            || rule.stopping
             || finish < position
             || self.profile.automatic
             || self.profile.disabled
@@ -243,98 +234,50 @@ impl Mcx514Trapezoidal {
         self.profile.finish = finish;
         self.profile.manual_point = point;
         // Decelerating or creeping, the trigger stays i64::MAX.
-        if !matches!(self.phase, Phase::Decelerating | Phase::Creeping) {
-            self.trigger = point;
+        if !matches!(rule.phase, Phase::Decelerating | Phase::Creeping) {
+            rule.trigger = point;
         }
-        self.complete = finish == position;
+        rule.complete = finish == position;
+        self.replan(rule);
         true
     }
 
-    /// The velocity of the next cycle, before the cut to the pulses left (raw I32F32), with the
-    /// phase it leaves the move in. The rules (SPEC §12.2): SV at once; up by AC to DV; down by
-    /// DC to SV from the cycle that begins at or past the trigger; a smooth stop decelerates at
-    /// once and stops from SV.
-    #[inline]
-    fn next_velocity(&mut self, position: i64, velocity: i64) -> i64 {
-        if position >= self.trigger {
-            self.decelerate();
-        }
-        match self.phase {
-            Phase::Cruising => velocity,
-            Phase::Accelerating => {
-                // velocity + AC < DV exactly when velocity < DV − AC (0 ≤ velocity): the sum is
-                // formed only below DV, so it never passes i64 (AC alone can near 2⁶³ raw).
-                if velocity < self.profile.below_last_speed_up {
-                    return velocity + self.profile.acceleration;
-                }
-                let drive = self.profile.drive;
-                self.cruise(position + drive);
-                drive
-            }
-            Phase::Decelerating => {
-                // Down by DC. No overflow: 0 ≤ velocity and DC < 2⁶³ in raw bits.
-                let next = velocity - self.profile.deceleration;
-                if next > self.profile.initial {
-                    // Above SV + DC before: on the ramp (a smooth stop has nothing to end yet).
-                    return next;
-                }
-                self.reach_initial(velocity)
-            }
-            // max(SV − DC, SV) = SV, cycle after cycle.
-            Phase::Creeping => velocity,
-            Phase::Start => self.start(),
-        }
+    /// The rule's state now, between two cycles: the one before the current run's first cycle,
+    /// which a run's cycles leave as it was.
+    fn rule(&self) -> Rule {
+        self.plan.rules[self.current % RUNS]
     }
 
-    /// The deceleration's last step, down to SV (never below: the creep), or, with a smooth stop,
-    /// the stop from at or below SV, as the chip's decelerating stop ends.
-    #[cold]
-    fn reach_initial(&mut self, velocity: i64) -> i64 {
-        let initial = self.profile.initial;
-        if self.stopping && velocity <= initial {
-            self.complete = true;
-            return 0;
-        }
-        if !self.stopping {
-            self.phase = Phase::Creeping;
-        }
-        initial
+    /// The move is over: the cycle that lands (or the stop) has been stepped.
+    fn complete(&self) -> bool {
+        self.current >= self.plan.rest_slot
     }
 
-    /// The cycle that begins at or past the trigger starts the deceleration; nothing triggers
-    /// again.
-    #[cold]
-    fn decelerate(&mut self) {
-        self.phase = Phase::Decelerating;
-        self.trigger = i64::MAX;
+    /// Lays the cycles out again from the present state, with the rule in the state `rule`.
+    fn replan(&mut self, rule: Rule) {
+        // A move already over keeps telling its last cycle as it was (for `limits`).
+        let shown_short = self.complete() && self.plan.cut_short;
+        let (position, velocity) = (self.state.position.to_bits(), self.state.velocity.to_bits());
+        self.plan = Layout::new(&self.profile, rule, position, velocity);
+        if self.plan.rest_slot == 0 {
+            self.plan.cut_short = shown_short;
+        }
+        self.current = 0;
     }
 
-    /// The first cycle: SV at once (DV with deceleration disabled).
+    /// The cycle of slot [`ELSEWHERE`] (a plan out of slots): taken by the rule, then a new plan.
     #[cold]
-    fn start(&mut self) -> i64 {
-        let p = self.profile;
-        if p.disabled {
-            self.phase = Phase::Cruising;
-            self.trigger = i64::MAX;
-            return p.drive;
+    #[inline(never)]
+    fn step_otherwise(&mut self) -> State {
+        let mut rule = self.plan.rules[ELSEWHERE];
+        let (position, velocity) = (self.state.position.to_bits(), self.state.velocity.to_bits());
+        let (next, wanted) = rule.cycle(&self.profile, position, velocity);
+        let state = advance(&mut self.state, I32F32::from_bits(next));
+        self.replan(rule);
+        if rule.complete {
+            self.plan.cut_short = wanted > next;
         }
-        if p.initial < p.drive {
-            self.phase = Phase::Accelerating;
-        } else {
-            self.cruise(p.initial);
-        }
-        p.initial
-    }
-
-    /// At DV after a cycle that sped up to `reached` (raw I32F32 pulses): with automatic
-    /// deceleration, the trigger becomes the finish point less the pulses output while speeding
-    /// up.
-    #[cold]
-    fn cruise(&mut self, reached: i64) {
-        self.phase = Phase::Cruising;
-        if self.profile.automatic {
-            self.trigger = self.profile.finish - reached;
-        }
+        state
     }
 }
 
@@ -343,23 +286,16 @@ impl ProfileGenerator for Mcx514Trapezoidal {
     // out-of-line call returning the whole state through memory.
     #[inline]
     fn step(&mut self) -> State {
-        let (position, before) = (self.state.position.to_bits(), self.state.velocity.to_bits());
-        let velocity = if self.complete {
-            self.wanted = 0;
-            0
-        } else {
-            let wanted = self.next_velocity(position, before);
-            self.wanted = wanted;
-            // At most the pulses left: the move lands exactly on the finish point, complete
-            // there (the next cycle drops to zero). i64: both below 2³¹ pulses in raw I32F32.
-            let left = self.profile.finish - position;
-            if wanted >= left {
-                self.complete = true;
-                left
-            } else {
-                wanted
-            }
-        };
+        // `% RUNS` is free (`current` < RUNS) and spares the bounds check.
+        let current = self.current % RUNS;
+        let (velocity, end) = self.plan.runs[current].take();
+        match end {
+            End::No => {}
+            // The run's last cycle: the next run is already laid out.
+            End::Run => self.current = current + 1,
+            End::Lap if current == ELSEWHERE => return self.step_otherwise(),
+            End::Lap => self.plan.runs[current].lap(),
+        }
         advance(&mut self.state, I32F32::from_bits(velocity))
     }
 
@@ -368,17 +304,19 @@ impl ProfileGenerator for Mcx514Trapezoidal {
     }
 
     fn is_complete(&self) -> bool {
-        self.complete && self.state.velocity == I32F32::ZERO
+        self.complete() && self.state.velocity == I32F32::ZERO
     }
 
     fn stop(&mut self, kind: StopKind) {
+        let mut rule = self.rule();
         match kind {
             StopKind::Smooth => {
-                self.stopping = true;
-                self.decelerate();
+                rule.stopping = true;
+                rule.decelerate();
             }
-            StopKind::Abrupt => self.complete = true,
+            StopKind::Abrupt => rule.complete = true,
         }
+        self.replan(rule);
     }
 
     fn limits(&self) -> Limits {
@@ -388,8 +326,10 @@ impl ProfileGenerator for Mcx514Trapezoidal {
             self.state.acceleration.to_bits(),
         );
         let before = velocity - acceleration;
-        // The ends of the move: the cycle cut to the pulses left, and the stop to zero.
-        let cut = velocity < self.wanted || velocity == 0;
+        // The ends of the move: the cycle cut to the pulses left (below the velocity the rule
+        // wanted: the last cycle stepped was the plan's last before rest), and the stop to zero.
+        let cut =
+            velocity == 0 || (self.current % RUNS == self.plan.rest_slot && self.plan.cut_short);
         // From rest the first cycle jumps to SV (to DV with deceleration disabled).
         let speed_up = if before == 0 {
             if p.disabled {
@@ -413,6 +353,141 @@ impl ProfileGenerator for Mcx514Trapezoidal {
             max_jerk: None,
             // A drop beyond both DC and SV only happens at a late finish or an abrupt stop.
             exempt: -acceleration > p.largest_drop,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::format::mcx514::ManualDecelerationPoint;
+    use proptest::prelude::*;
+
+    /// The rule stepped cycle by cycle, as the generator did before its cycles were laid out:
+    /// the yardstick for the plan, commands included.
+    struct Decided {
+        profile: PerCycle,
+        rule: Rule,
+        state: State,
+    }
+
+    impl Decided {
+        fn step(&mut self) -> State {
+            let (position, velocity) =
+                (self.state.position.to_bits(), self.state.velocity.to_bits());
+            let (next, _) = self.rule.cycle(&self.profile, position, velocity);
+            advance(&mut self.state, I32F32::from_bits(next))
+        }
+
+        /// As `continue_to` was.
+        fn continue_to(&mut self, pulses: u32, manual_point: Option<u32>) -> bool {
+            let finish = i64::from(pulses) << 32;
+            let position = self.state.position.to_bits();
+            let moved = position != 0 || self.state.velocity != I32F32::ZERO;
+            if (self.rule.complete && moved)
+                || self.rule.stopping
+                || finish < position
+                || self.profile.automatic
+                || self.profile.disabled
+            {
+                return false;
+            }
+            let point = manual_point.map_or(i64::MAX, |point| {
+                i64::from(point.min(i32::MAX as u32)) << 32
+            });
+            self.profile.finish = finish;
+            self.profile.manual_point = point;
+            if !matches!(self.rule.phase, Phase::Decelerating | Phase::Creeping) {
+                self.rule.trigger = point;
+            }
+            self.rule.complete = finish == position;
+            true
+        }
+
+        fn stop(&mut self, kind: StopKind) {
+            match kind {
+                StopKind::Smooth => {
+                    self.rule.stopping = true;
+                    self.rule.decelerate();
+                }
+                StopKind::Abrupt => self.rule.complete = true,
+            }
+        }
+    }
+
+    /// A command between two cycles.
+    #[derive(Debug, Clone, Copy)]
+    enum Command {
+        /// More pulses (a fraction of what was given so far, or a few) and a new point.
+        Continue {
+            more: u32,
+            point: Option<u32>,
+        },
+        Stop(StopKind),
+    }
+
+    fn command() -> impl Strategy<Value = Command> {
+        prop_oneof![
+            4 => (prop_oneof![0u32..10, 0u32..100_000], prop::option::of(0u32..200_000))
+                .prop_map(|(more, point)| Command::Continue { more, point }),
+            1 => Just(Command::Stop(StopKind::Smooth)),
+            1 => Just(Command::Stop(StopKind::Abrupt)),
+        ]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(3_000))]
+
+        /// Runs of a continuous interpolation (manual deceleration, finish points moved on in
+        /// motion) and stops, at whole and fractional speeds: every cycle's state and completion
+        /// the same as the rule's cycle by cycle.
+        #[test]
+        fn the_plan_is_the_rule_cycle_by_cycle(
+            pulses in 0u32..50_000,
+            speeds in (1u32..100_000, 1u32..100_000),
+            rates in (1u32..5_000_000, 1u32..5_000_000),
+            point in prop::option::of(0u32..60_000),
+            mode in 0..3u8,
+            commands in prop::collection::vec((0u32..300, command()), 0..6),
+        ) {
+            let deceleration_mode = match (mode, point) {
+                (0, _) => DecelerationMode::Automatic,
+                (1, Some(point)) => DecelerationMode::Manual(ManualDecelerationPoint::from_bits(point).unwrap()),
+                _ => DecelerationMode::Disabled,
+            };
+            let rates = if deceleration_mode == DecelerationMode::Automatic { (rates.0, rates.0) } else { rates };
+            let parameters = Mcx514Parameters {
+                pulses,
+                initial_speed: InitialSpeed::from_bits(speeds.0.min(speeds.1)).unwrap(),
+                drive_speed: DriveSpeed::from_bits(speeds.0.max(speeds.1)).unwrap(),
+                acceleration: Acceleration::from_bits(rates.0).unwrap(),
+                deceleration: Deceleration::from_bits(rates.1).unwrap(),
+                deceleration_mode,
+            };
+            let cycle = CycleTime::from_seconds(1e-3).unwrap();
+            let mut axis = Mcx514Trapezoidal::new(parameters, cycle).unwrap();
+            let mut decided = Decided { profile: axis.profile, rule: axis.rule(), state: axis.state };
+            let mut given = pulses;
+            for (gap, command) in commands.into_iter().chain([(20_000, Command::Stop(StopKind::Smooth))]) {
+                for cycle in 0..gap {
+                    prop_assert_eq!(axis.step(), decided.step(), "cycle {}", cycle);
+                    prop_assert_eq!(axis.is_complete(), decided.rule.complete && decided.state.velocity == I32F32::ZERO);
+                }
+                match command {
+                    Command::Continue { more, point } => {
+                        let pulses = given.saturating_add(more).min(1_000_000);
+                        let continued = axis.continue_to(pulses, point);
+                        prop_assert_eq!(continued, decided.continue_to(pulses, point));
+                        if continued {
+                            given = pulses;
+                        }
+                    }
+                    Command::Stop(kind) => {
+                        axis.stop(kind);
+                        decided.stop(kind);
+                    }
+                }
+            }
         }
     }
 }
