@@ -843,7 +843,8 @@ def measure_trapezoid_commands(probe: Probe, moves: int, after: int = 3000) -> t
 def measure_other_commands(probe: Probe, moves: int,
                            seed: int = 14) -> tuple[list[int], list[int], list[int], list[int]]:
     """Per-cycle counts after commands in motion of the S-curve (a smooth or abrupt stop, or both,
-    at a random cycle of one of the planned random moves short enough to step) and of velocity
+    at a random cycle of one of the planned random moves short enough to step; after half the
+    abrupt ones a restart, right after the drop or later) and of velocity
     contouring (new velocities, rates and stops, several in a row), every cycle from the first
     command to the end (at most 5,000 cycles after the last); the S-curve's cycles after smooth
     stops alone and after stops that include an abrupt one, apart; and the S-curve stop commands'
@@ -853,6 +854,7 @@ def measure_other_commands(probe: Probe, moves: int,
     import random
     rng = random.Random(seed)
     log_uniform = lambda low, high: int(math.exp(rng.uniform(math.log(low), math.log(high))))
+    restarts = random.Random(seed + 1)
     scurve, abrupt, velocity_counts, stops = [], [], [], []
     index = 0
     stepped = 0
@@ -869,8 +871,18 @@ def measure_other_commands(probe: Probe, moves: int,
         counts = abrupt if 1 in kinds else scurve
         for kind in kinds:
             stops.append(probe.call("probe_stop", kind).instructions)
-            for _ in range(rng.choice([0, 1, 3])):
+            steps = rng.choice([0, 1, 3])
+            for _ in range(steps):
                 counts.append(probe.call("probe_step").instructions)
+        if kinds[-1] == 1 and restarts.random() < 0.5:
+            # Half the moves that end with an abrupt stop restart on the cycle after its drop
+            # (its acceleration still the drop's, which the first step corrects) or later, to
+            # the move's destination halved at its velocity (a separate generator of choices,
+            # so the other moves stay as they were).
+            if steps == 0:
+                counts.append(probe.call("probe_step").instructions)
+            if probe.call("probe_restart", (move[0] // 2) & 0xFFFF_FFFF, move[1]).r0:
+                raise ProbeFailure(f"restart of move {index - 1} refused")
         for _ in range(5000):
             counts.append(probe.call("probe_step").instructions)
             if probe.call("probe_complete").r0:

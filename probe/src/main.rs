@@ -11,6 +11,7 @@
 //! - `probe_plan(index)`: the same for move `index`, the move generated on the target too.
 //! - `probe_step_setup(...)`, `probe_phases(out)`, `probe_step()`: one generator in a static,
 //!   stepped one cycle per call, so every cycle's cost is measured on its own.
+//! - `probe_restart(destination, velocity)`: that generator restarted after a stop.
 //! - `probe_gear_setup(ratio, deceleration)`, `probe_gear_follow(master)`,
 //!   `probe_gear_command(command, value)`: an MC1451A electronic gear (`ElectronicGear`), one
 //!   `follow` per call with the master's count, and its stops and ratio changes.
@@ -197,6 +198,22 @@ pub unsafe extern "C" fn probe_stop(kind: u32) {
     } else {
         profilegen::StopKind::Abrupt
     });
+}
+
+/// Restarts the stepped S-curve generator (after a stop): `SCurve::restart` to `destination`
+/// counts with the maximum velocity `velocity` (raw bits); 0 when it took the move, else 1.
+///
+/// # Safety
+/// `probe_step_setup` succeeded before.
+#[no_mangle]
+pub unsafe extern "C" fn probe_restart(destination: i32, velocity: u32) -> u32 {
+    // SAFETY: initialized by probe_step_setup (the caller's contract); single-threaded.
+    let axis = unsafe { (*AXIS.0.get()).assume_init_mut() };
+    match MaxVelocity::from_bits(velocity).and_then(|velocity| axis.restart(destination, velocity))
+    {
+        Ok(()) => 0,
+        Err(_) => 1,
+    }
 }
 
 /// 1 when the stepped S-curve generator is complete, else 0.

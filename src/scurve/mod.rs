@@ -50,7 +50,7 @@ use fixed::types::I32F32;
 use crate::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
 use crate::state::{Limits, ProfileGenerator, State, StopKind};
 use crate::Error;
-use schedule::{Limits64, Schedule, ABRUPT_LEVEL_OFF, ABRUPT_REST, SENTINEL};
+use schedule::{Limits64, Schedule, ABRUPT_REST, PENDING, SENTINEL};
 
 /// The parameters of an S-curve move, in MC1451A register formats.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -96,6 +96,25 @@ enum Motion {
     AbruptPending,
 }
 
+/// A jerk change kept apart from the schedule, which the fast path takes at index [`PENDING`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Pending {
+    /// The jerk it sets, I32F32 bits, direction included.
+    jerk: i64,
+    /// The cycles it holds.
+    hold: u64,
+    /// The index of the change after it.
+    next: usize,
+}
+
+impl Pending {
+    const NONE: Self = Self {
+        jerk: 0,
+        hold: 0,
+        next: SENTINEL,
+    };
+}
+
 /// The MC1451A S-curve point-to-point generator.
 ///
 /// ```
@@ -127,21 +146,22 @@ pub struct SCurve {
     /// Steps until the next event: a jerk change, the end of the move, a stop's next cycle.
     countdown: u64,
     /// Index of the next jerk change in the schedule, replayed on the fast path of
-    /// [`ProfileGenerator::step`] (a smooth stop's changes, after the plan's, too); off the plan
-    /// (an abrupt stop, rest, a stop decided per cycle) the schedule's sentinel, which sends
-    /// every event to the slow path. The move is complete once its end marker is replayed.
+    /// [`ProfileGenerator::step`] (a smooth stop's changes, after the plan's, too); past it,
+    /// [`PENDING`] (the change kept in `pending`) and [`ABRUPT_REST`]; off the plan (rest, a
+    /// stop decided per cycle) the schedule's sentinel, which sends every event to the slow
+    /// path. The move is complete once its end marker is replayed.
     next_change: usize,
-    /// A correction to the jerk that the next event takes back (a move started right after an
-    /// abrupt stop starts from that cycle's acceleration).
-    offset: i64,
     /// The phase, as the last command or slow-path event left it (an abrupt stop's cycles do
     /// not update it: [`Self::motion`] reads it with them).
     motion: Motion,
     /// +1 or −1: the direction of the move.
     direction: i64,
-    /// An abrupt stop's second cycle's jerk, which levels the drop's acceleration off: the
-    /// velocity the stop dropped (up to 2^48 raw, more than the schedule's 32-bit jerks hold).
-    level_off: i64,
+    /// A change the fast path takes at index [`PENDING`], past the schedule: an abrupt stop's
+    /// second cycle, whose jerk levels the drop's acceleration off (the velocity dropped, up to
+    /// 2^48 raw, more than the schedule's 32-bit jerks hold), then [`ABRUPT_REST`]; or, after the
+    /// first step of a move started right after an abrupt stop (whose jerk was corrected for the
+    /// drop's acceleration), the plan's replay from its second cycle.
+    pending: Pending,
     /// After a stop the velocity register reads zero (SPEC §9).
     velocity_cleared: bool,
     parameters: ScurveParameters,
@@ -268,10 +288,9 @@ impl SCurve {
             jerk: 0,
             countdown: u64::MAX,
             next_change: SENTINEL,
-            offset: 0,
             motion: Motion::Rest,
             direction: 1,
-            level_off: 0,
+            pending: Pending::NONE,
             velocity_cleared: false,
             parameters,
             limits,
@@ -434,7 +453,7 @@ impl SCurve {
     /// drop to zero velocity) has been stepped.
     fn motion(&self) -> Motion {
         match self.motion {
-            Motion::AbruptPending if self.next_change != ABRUPT_LEVEL_OFF => Motion::Rest,
+            Motion::AbruptPending if self.next_change != PENDING => Motion::Rest,
             motion => motion,
         }
     }
@@ -446,7 +465,6 @@ impl SCurve {
 
     /// Starts the planned move (or rests, if it is empty) on the next step.
     fn start(&mut self) {
-        self.offset = 0;
         if self.schedule.plan.total == 0 {
             self.rest();
             return;
@@ -458,14 +476,27 @@ impl SCurve {
         self.countdown = first.hold;
         self.next_change = 1;
         // Right after an abrupt stop the last acceleration is the drop: the first step of the
-        // move starts from zero, so its jerk is corrected for that one cycle, and the slow path
-        // takes the correction back.
+        // move starts from zero, so its jerk is corrected for that one cycle, and the replay
+        // goes on from the plan's second cycle (a change past the schedule, `PENDING`).
         let acceleration = self.state.acceleration.to_bits();
         if acceleration != 0 {
             self.jerk -= acceleration;
-            self.offset = acceleration;
             self.countdown = 1;
-            self.next_change = SENTINEL;
+            self.next_change = PENDING;
+            self.pending = if first.hold > 1 {
+                Pending {
+                    jerk: first.jerk,
+                    hold: first.hold - 1,
+                    next: 1,
+                }
+            } else {
+                let second = self.schedule.run(1);
+                Pending {
+                    jerk: second.jerk,
+                    hold: second.hold,
+                    next: 2,
+                }
+            };
         }
     }
 
@@ -488,22 +519,6 @@ impl SCurve {
             self.state.velocity.to_bits(),
         );
         match self.motion {
-            Motion::Planned if self.offset != 0 => {
-                // Only after the first step of a move started right after an abrupt stop: the
-                // correction is taken back, and the replay goes on from the second cycle.
-                self.offset = 0;
-                let first = self.schedule.run(0);
-                self.jerk = first.jerk;
-                if first.hold > 1 {
-                    self.countdown = first.hold - 1;
-                    self.next_change = 1;
-                } else {
-                    let second = self.schedule.run(1);
-                    self.jerk = second.jerk;
-                    self.countdown = second.hold;
-                    self.next_change = 2;
-                }
-            }
             // Arrived: the end marker's hold ran out (after 2^64 steps), or nothing to follow.
             Motion::Planned => self.rest(),
             Motion::Stopping => {
@@ -560,7 +575,6 @@ impl SCurve {
     fn rest(&mut self) {
         self.motion = Motion::Rest;
         self.next_change = SENTINEL;
-        self.offset = 0;
         self.jerk = -self.state.acceleration.to_bits();
         self.countdown = if self.jerk == 0 { u64::MAX } else { 1 };
     }
@@ -592,12 +606,14 @@ impl ProfileGenerator for SCurve {
                     self.countdown = change.hold;
                     self.next_change = next + 1;
                 }
-                // Past the schedule, an abrupt stop's cycles: the one after the drop levels the
-                // acceleration off (its jerk too wide for the schedule's arrays), then rest.
-                None if next == ABRUPT_LEVEL_OFF => {
-                    self.jerk = self.level_off;
-                    self.countdown = 1;
-                    self.next_change = ABRUPT_REST;
+                // Past the schedule: the change kept apart (an abrupt stop's level-off, whose
+                // jerk is too wide for the schedule's arrays; the replay after a move's corrected
+                // first step), then an abrupt stop's rest.
+                None if next == PENDING => {
+                    let Pending { jerk, hold, next } = self.pending;
+                    self.jerk = jerk;
+                    self.countdown = hold;
+                    self.next_change = next;
                 }
                 None if next == ABRUPT_REST => {
                     self.jerk = 0;
@@ -628,7 +644,6 @@ impl ProfileGenerator for SCurve {
     fn stop(&mut self, kind: StopKind) {
         // Either stop clears the velocity register, moving or not (SPEC §9).
         self.velocity_cleared = true;
-        self.offset = 0;
         let (acceleration, velocity) = (
             self.state.acceleration.to_bits(),
             self.state.velocity.to_bits(),
@@ -653,8 +668,12 @@ impl ProfileGenerator for SCurve {
                 self.motion = Motion::AbruptPending;
                 self.jerk = -velocity - acceleration;
                 self.countdown = 1;
-                self.next_change = ABRUPT_LEVEL_OFF;
-                self.level_off = velocity;
+                self.next_change = PENDING;
+                self.pending = Pending {
+                    jerk: velocity,
+                    hold: 1,
+                    next: ABRUPT_REST,
+                };
             }
         }
     }

@@ -4,7 +4,7 @@
 
 use crate::predict::{Piece, Prediction, MAX_SEGMENTS};
 
-use super::{Motion, SCurve, SENTINEL};
+use super::{Motion, SCurve, PENDING, SENTINEL};
 
 impl SCurve {
     /// The future of this axis from its present state, for as long as it gets no further
@@ -62,7 +62,7 @@ impl SCurve {
                 // acceleration — or, on the first step of a move started right after an abrupt
                 // stop, the plan from its start (that step's corrected jerk makes its
                 // acceleration the first run's jerk, as from acceleration zero).
-                let (acceleration, jerk, countdown, next) = if self.offset != 0 {
+                let (acceleration, jerk, countdown, next) = if self.next_change == PENDING {
                     let first = self.schedule.run(0);
                     (0, first.jerk, first.hold, 1)
                 } else {

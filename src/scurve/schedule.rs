@@ -30,10 +30,10 @@ pub(super) const MAX_CHANGES: usize = 45;
 /// it takes the slow path on its next event.
 pub(super) const SENTINEL: usize = MAX_CHANGES;
 
-/// Past the sentinel, the changes of an abrupt stop the fast path replays (they are not the
-/// schedule's: [`super::SCurve`] keeps the one jerk they need, too wide for the arrays): the
-/// cycle after the drop, which levels the acceleration off, then rest.
-pub(super) const ABRUPT_LEVEL_OFF: usize = SENTINEL + 1;
+/// Past the sentinel, a change the fast path replays that is not the schedule's ([`super::SCurve`]
+/// keeps it: an abrupt stop's level-off, whose jerk is too wide for the arrays; the replay after
+/// the corrected first step of a move started right after an abrupt stop).
+pub(super) const PENDING: usize = SENTINEL + 1;
 /// Rest after an abrupt stop (jerk zero for ever).
 pub(super) const ABRUPT_REST: usize = SENTINEL + 2;
 
