@@ -116,20 +116,32 @@ impl Envelope {
     /// The clamped sum from the counts of the cycles on each line: `slowing` above the level on
     /// L, `rising` and `falling` below it on E, the rest at `cap`. (A value equal to the cap
     /// may be counted on its line or at the level: the sum is the same.)
+    ///
+    /// In 64 bits, saturating at 2^64 − 1 (a 32-bit core multiplies 64-bit words several times
+    /// faster than 128-bit ones): the sum is only ever compared with a distance below 2^64, or
+    /// subtracted from one it does not exceed, so a saturated sum answers every comparison as
+    /// the exact one would. Every part is a sum of positive terms (the lines are disjoint: see
+    /// [`Self::cut`]), each an arithmetic progression.
     fn sum(&self, cap: i128, slowing: i128, rising: i128, falling: i128) -> i128 {
-        let clamped = rising * self.first
-            + self.acceleration * (rising * (rising + 1) / 2)
-            + falling * self.landing
-            + self.deceleration * (falling * (falling - 1) / 2)
-            + (self.cycles - slowing - rising - falling) * cap;
-        // (None on the slowest line from rest, and in most plans in motion: 128-bit products
-        // are library calls on a 32-bit core.)
-        if slowing == 0 {
-            return clamped;
-        }
-        clamped + slowing * self.lower - self.deceleration * (slowing * (slowing + 1) / 2)
+        // Counts below 2^56, values below 2^49: the casts are exact.
+        let level = (self.cycles - slowing - rising - falling) as u64;
+        let (lower, first, landing) = (self.lower as u64, self.first as u64, self.landing as u64);
+        let (acceleration, deceleration) = (self.acceleration as u64, self.deceleration as u64);
+        let (slowing, rising, falling) = (slowing as u64, rising as u64, falling as u64);
+        let sum = progression(rising, first + acceleration, first + rising * acceleration)
+            .saturating_add(progression(
+                falling,
+                landing,
+                landing + falling.saturating_sub(1) * deceleration,
+            ))
+            .saturating_add(saturating_product(level, cap as u64))
+            .saturating_add(progression(
+                slowing,
+                lower.saturating_sub(deceleration),
+                lower.saturating_sub(slowing * deceleration),
+            ));
+        i128::from(sum)
     }
-
     /// [`Self::cut`] with [`Self::below`]'s counts for `cap` given.
     fn cut_counting(&self, cap: i128, (rising_below, falling_below): (i128, i128)) -> Cut {
         let up = self.up();
@@ -237,6 +249,30 @@ fn highest_level(envelope: &Envelope, distance: i128, max: i128, below_max: (i12
         return max;
     }
     (start + (distance - envelope.sum(start, slowing, rising, falling)) / slope).min(max)
+}
+
+/// The sum of `count` terms of an arithmetic progression from `first` to `last` (both below
+/// 2^62), saturating at 2^64 − 1: count·(first + last) / 2, halved where it divides exactly
+/// (count even, or else first + last, the progression's terms being integers).
+fn progression(count: u64, first: u64, last: u64) -> u64 {
+    if count == 0 {
+        return 0;
+    }
+    let ends = first + last;
+    let (factor, other) = if count % 2 == 0 {
+        (count / 2, ends)
+    } else {
+        (count, ends / 2)
+    };
+    saturating_product(factor, other)
+}
+
+/// `a·b`, saturating at 2^64 − 1. Written as a checked product: `u64::saturating_mul` compiles
+/// to longer code for a Cortex-M4 (measured: the worst whole-range set-up 30,317 instructions
+/// this way, 30,891 with it).
+#[allow(clippy::manual_saturating_arithmetic)]
+fn saturating_product(a: u64, b: u64) -> u64 {
+    a.checked_mul(b).unwrap_or(u64::MAX)
 }
 
 /// ⌊a / b⌋ for 0 ≤ a and 0 < b, in 64 bits when both fit (a 32-bit core divides those several
@@ -503,6 +539,39 @@ mod tests {
         }
         assert!(last <= limits.start_velocity, "the drop: {velocities:?}");
         velocities.len() as u64
+    }
+
+    /// A progression's sum against u128 arithmetic, saturated, across the widths.
+    #[test]
+    fn a_progressions_sum_saturates_exactly() {
+        let values = [
+            0u64,
+            1,
+            2,
+            3,
+            255,
+            1 << 20,
+            (1 << 32) + 7,
+            (1 << 48) - 1,
+            (1 << 56) + 3,
+        ];
+        for count in values {
+            for first in values.iter().map(|v| v >> 2) {
+                for step in [0u64, 1, 2, 1 << 8, 1 << 30] {
+                    let last = first + count.saturating_sub(1).min(1 << 20) * step;
+                    if count > 1 << 20 && step != 0 {
+                        continue;
+                    }
+                    let exact = u128::from(count) * u128::from(first + last) / 2;
+                    let expected = u64::try_from(exact).unwrap_or(u64::MAX);
+                    assert_eq!(
+                        progression(count, first, last),
+                        expected,
+                        "{count} {first} {last}"
+                    );
+                }
+            }
+        }
     }
 
     /// Every small move with S > D, from rest and in motion at every velocity: a plan exactly
