@@ -4,33 +4,84 @@
 //! counts down and tests a 32-bit word in two instructions where a 64-bit one takes five, and
 //! the laps are looked at only on the cycle the word reaches zero.
 
+/// A run's cycles left, counted down in 32 bits: `cycles = count + laps·2^32` with `count` in
+/// 1 … 2^32 (0 standing for 2^32). Shared by both kinds of run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Countdown {
+    count: u32,
+    laps: u32,
+}
+
+impl Countdown {
+    /// `cycles` cycles (≥ 1; 0 makes an empty run, never replayed).
+    pub(crate) const fn new(cycles: u64) -> Self {
+        if cycles == 0 {
+            return Self { count: 0, laps: 0 };
+        }
+        let below = cycles - 1;
+        Self {
+            count: (below as u32).wrapping_add(1),
+            laps: (below >> 32) as u32,
+        }
+    }
+
+    /// The cycles left (≥ 1 while the run is replayed).
+    pub(crate) const fn cycles(&self) -> u64 {
+        let count = if self.count == 0 {
+            1 << 32
+        } else {
+            self.count as u64
+        };
+        count + ((self.laps as u64) << 32)
+    }
+
+    /// The slow path's marker: one cycle, whose end [`Self::tick`] reports as [`End::Lap`] (its
+    /// laps are never counted).
+    const fn elsewhere() -> Self {
+        Self {
+            count: 1,
+            laps: u32::MAX,
+        }
+    }
+
+    /// One cycle taken: what the count reaching zero means.
+    #[inline(always)]
+    fn tick(&mut self) -> End {
+        self.count = self.count.wrapping_sub(1);
+        if self.count != 0 {
+            End::No
+        } else if self.laps == 0 {
+            End::Run
+        } else {
+            End::Lap
+        }
+    }
+
+    /// After [`End::Lap`] on a run that is not the slow path's: 2^32 cycles more (the count
+    /// wraps on the next).
+    #[inline(always)]
+    fn lap(&mut self) {
+        self.laps -= 1;
+    }
+}
+
 /// One run being replayed: `cycles` cycles at velocities `next`, `next + increment`, … (I32F32
-/// bits), the count split as `cycles = count + laps·2^32` with `count` in 1 … 2^32 (0 standing
-/// for 2^32).
+/// bits).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Replay {
     next: i64,
     increment: i64,
-    count: u32,
-    laps: u32,
+    countdown: Countdown,
 }
 
 impl Replay {
     /// The run of `cycles` (≥ 1; 0 makes an empty run, never replayed) from `next` by
     /// `increment` per cycle.
     pub(crate) const fn new(next: i64, increment: i64, cycles: u64) -> Self {
-        // cycles = count + laps·2^32, count in 1 … 2^32 (written 0 for 2^32).
-        let (count, laps) = if cycles == 0 {
-            (0, 0)
-        } else {
-            let below = cycles - 1;
-            ((below as u32).wrapping_add(1), (below >> 32) as u32)
-        };
         Self {
             next,
             increment,
-            count,
-            laps,
+            countdown: Countdown::new(cycles),
         }
     }
 
@@ -46,12 +97,7 @@ impl Replay {
 
     /// The cycles left in the run (≥ 1 while it is replayed).
     pub(crate) const fn cycles(&self) -> u64 {
-        let count = if self.count == 0 {
-            1 << 32
-        } else {
-            self.count as u64
-        };
-        count + ((self.laps as u64) << 32)
+        self.countdown.cycles()
     }
 
     /// The run that stands for the slow path (the slot of a plan that leads to it): one cycle,
@@ -60,8 +106,7 @@ impl Replay {
         Self {
             next: 0,
             increment: 0,
-            count: 1,
-            laps: u32::MAX,
+            countdown: Countdown::elsewhere(),
         }
     }
 
@@ -71,22 +116,53 @@ impl Replay {
         let velocity = self.next;
         // Past the run's last cycle the sum is never used: wrapping (a rate can near 2⁶³).
         self.next = velocity.wrapping_add(self.increment);
-        self.count = self.count.wrapping_sub(1);
-        let end = if self.count != 0 {
-            End::No
-        } else if self.laps == 0 {
-            End::Run
-        } else {
-            End::Lap
-        };
-        (velocity, end)
+        (velocity, self.countdown.tick())
     }
 
     /// After [`End::Lap`] on a run that is not [`Self::elsewhere`]: 2^32 cycles more (the count
     /// wraps on the next).
     #[inline(always)]
     pub(crate) fn lap(&mut self) {
-        self.laps -= 1;
+        self.countdown.lap();
+    }
+}
+
+/// One run of constant jerk being replayed (the MCX514 S-curve's): `cycles` cycles on each of
+/// which the acceleration changes by `jerk` (I32F32 bits), the velocity by the acceleration. The
+/// state itself carries the acceleration and the velocity, so a cycle is three additions.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) struct JerkRun {
+    jerk: i64,
+    countdown: Countdown,
+}
+
+impl JerkRun {
+    /// The run of `cycles` (≥ 1; 0 makes an empty run, never replayed) at `jerk` per cycle.
+    pub(crate) const fn new(jerk: i64, cycles: u64) -> Self {
+        Self {
+            jerk,
+            countdown: Countdown::new(cycles),
+        }
+    }
+
+    /// The run that stands for the slow path: see [`Replay::elsewhere`].
+    pub(crate) const fn elsewhere() -> Self {
+        Self {
+            jerk: 0,
+            countdown: Countdown::elsewhere(),
+        }
+    }
+
+    /// Takes the run's next cycle: its jerk, and what its count reaching zero means.
+    #[inline(always)]
+    pub(crate) fn take(&mut self) -> (i64, End) {
+        (self.jerk, self.countdown.tick())
+    }
+
+    /// After [`End::Lap`] on a run that is not [`Self::elsewhere`]: 2^32 cycles more.
+    #[inline(always)]
+    pub(crate) fn lap(&mut self) {
+        self.countdown.lap();
     }
 }
 

@@ -62,8 +62,20 @@ const SOURCES: &[(&str, &str)] = &[
     ("src/replay.rs", include_str!("../src/replay.rs")),
     ("src/division.rs", include_str!("../src/division.rs")),
     (
-        "src/mcx514/scurve.rs",
-        include_str!("../src/mcx514/scurve.rs"),
+        "src/mcx514/scurve/mod.rs",
+        include_str!("../src/mcx514/scurve/mod.rs"),
+    ),
+    (
+        "src/mcx514/scurve/ramp.rs",
+        include_str!("../src/mcx514/scurve/ramp.rs"),
+    ),
+    (
+        "src/mcx514/scurve/rule.rs",
+        include_str!("../src/mcx514/scurve/rule.rs"),
+    ),
+    (
+        "src/mcx514/scurve/plan.rs",
+        include_str!("../src/mcx514/scurve/plan.rs"),
     ),
     (
         "src/interpolation/mod.rs",

@@ -647,36 +647,103 @@ def step_line(probe: Probe, profile: str, finish: tuple[int, int, int], register
         raise ProbeFailure(f"line {finish} driven by {profile} {registers} ended at {axes}")
 
 
-def step_axis(probe: Probe, finish: tuple[int, int, int], registers: tuple, counts: list[int],
-              max_cycles: int = 20_000) -> int:
-    """Sets up the MCX514 trapezoid of a line alone (no geometry: a one-axis generator) and steps
-    it to its end (and 2 cycles more), each cycle's count to `counts`; returns the set-up's count
-    (the line's steps, the registers' conversion from pps with the cycle time, the plan)."""
-    words = [3, *finish, *registers]
+def step_axis(probe: Probe, profile: str, finish: tuple[int, int, int], registers: tuple,
+              counts: list[int], max_cycles: int = 20_000) -> int:
+    """Sets up the MCX514 profile (`mcx514` the trapezoid, `mcx514_scurve` the S-curve) of a line
+    alone (no geometry: a one-axis generator) and steps it to its end (and 2 cycles more), each
+    cycle's count to `counts`; returns the set-up's count (the line's steps, the registers'
+    conversion from pps with the cycle time, the plan)."""
+    kind = {"mcx514": 3, "mcx514_scurve": 4}[profile]
+    words = [kind, *finish, *registers]
     words += [0] * (13 - len(words))
     probe.uc.mem_write(SCRATCH_PAGE, struct.pack("<13I", *(w & 0xFFFF_FFFF for w in words)))
     setup = probe.call("probe_line_setup", SCRATCH_PAGE)
     if setup.u64 == REFUSED:
-        raise ProbeFailure(f"axis {finish} {registers} refused")
+        raise ProbeFailure(f"axis {finish} {profile} {registers} refused")
     for _ in range(max_cycles):
-        counts.append(probe.call("probe_axis_step_mcx514").instructions)
+        counts.append(probe.call(f"probe_axis_step_{profile}").instructions)
         if probe.call("probe_axis_complete").r0:
             break
     else:
-        raise ProbeFailure(f"axis {registers}: not complete in {max_cycles} cycles")
-    counts += [probe.call("probe_axis_step_mcx514").instructions for _ in range(2)]
+        raise ProbeFailure(f"axis {profile} {registers}: not complete in {max_cycles} cycles")
+    counts += [probe.call(f"probe_axis_step_{profile}").instructions for _ in range(2)]
     return setup.instructions
 
 
-def measure_mcx514_axis(probe: Probe, moves: int) -> tuple[list[int], list[int]]:
-    """Per-cycle counts of the MCX514 trapezoid alone, over the lines' drives, and the set-up
-    counts. (The MCX514 S-curve is not measured alone: a second caller of its step changes how
-    the line's is compiled.)"""
-    counts: list[int] = []
-    setups: list[int] = []
-    for finish, registers in [(MANUAL_LINE, r) for r in MANUAL_LINE_MCX514] + random_mcx514_lines(moves):
-        setups.append(step_axis(probe, finish, registers, counts))
-    return counts, setups
+def measure_mcx514_axis(probe: Probe, moves: int) -> dict[str, tuple[list[int], list[int]]]:
+    """Per-cycle counts of the MCX514 trapezoid and S-curve alone, over the lines' drives, and
+    their set-up counts."""
+    drives = {
+        "mcx514": [(MANUAL_LINE, r) for r in MANUAL_LINE_MCX514] + random_mcx514_lines(moves),
+        "mcx514_scurve": [(MANUAL_LINE, r) for r in MANUAL_LINE_MCX514_SCURVE]
+        + random_mcx514_scurve_lines(moves),
+    }
+    measured = {}
+    for profile, lines in drives.items():
+        counts: list[int] = []
+        setups = [step_axis(probe, profile, finish, registers, counts) for finish, registers in lines]
+        measured[profile] = (counts, setups)
+    return measured
+
+
+def random_mcx514_scurve_registers(n: int, seed: int = 17) -> list[tuple[tuple[int, int, int], tuple]]:
+    """MCX514 S-curve lines with every register log-uniform over its whole range (the cycle time
+    one of 100, 250, 1,000, 4,000 µs; SV ≤ DV; AC = DC and JK = DJ with automatic deceleration;
+    any manual point), for planning only: such moves can take billions of cycles."""
+    import math
+    import random
+    rng = random.Random(seed)
+    log_uniform = lambda low, high: int(math.exp(rng.uniform(math.log(low), math.log(high))))
+    lines = []
+    for _ in range(n):
+        cycle = rng.choice([100, 250, 1000, 4000])
+        a, b = log_uniform(1, 8_000_000), log_uniform(1, 8_000_000)
+        mode = rng.randrange(3)
+        acceleration = log_uniform(1, 536_870_911)
+        deceleration = acceleration if mode == 0 else log_uniform(1, 536_870_911)
+        jerk = log_uniform(1, 1_073_741_823)
+        deceleration_jerk = jerk if mode == 0 else log_uniform(1, 1_073_741_823)
+        steps = log_uniform(1, (1 << 30) - 1)
+        finish = (steps, log_uniform(1, steps) * rng.choice([-1, 1]), 0)
+        lines.append((finish, (cycle, min(a, b), max(a, b), acceleration, deceleration, mode,
+                               rng.randint(0, steps), jerk, deceleration_jerk)))
+    return lines
+
+
+def measure_mcx514_plans(probe: Probe, moves: int) -> list[int]:
+    """The MCX514 S-curve's plan (`Layout::lay_out` and every function it calls) counted alone, at
+    the set-up of random moves over the whole register ranges: the set-up also converts the
+    registers from pps with f64 arithmetic, emulated on this core (the units' edge, not the
+    planning). Set-ups the crate refuses (a register that vanishes per cycle) are skipped."""
+    starts = {start for start, _, name in probe.functions if "mcx514::scurve::plan::Layout::lay_out" in name}
+    if not starts:
+        raise ProbeFailure("no mcx514::scurve::plan::Layout::lay_out in the probe image")
+    inside = {"return": None, "count": 0}
+
+    def on_instruction(uc, address, _size, _data) -> None:
+        if inside["return"] is None:
+            if address in starts:
+                inside["return"] = uc.reg_read(arm.UC_ARM_REG_LR) & ~1
+                inside["count"] += 1
+        elif address == inside["return"]:
+            inside["return"] = None
+        else:
+            inside["count"] += 1
+
+    hook = probe.uc.hook_add(UC_HOOK_CODE, on_instruction)
+    probe.uc.ctl_flush_tb()
+    plans: list[int] = []
+    try:
+        for finish, registers in random_mcx514_scurve_registers(moves):
+            words = [4, *finish, *registers]
+            probe.uc.mem_write(SCRATCH_PAGE, struct.pack("<13I", *(w & 0xFFFF_FFFF for w in words)))
+            inside["count"] = 0
+            if probe.call("probe_line_setup", SCRATCH_PAGE).u64 != REFUSED:
+                plans.append(inside["count"])
+    finally:
+        probe.uc.hook_del(hook)
+        probe.uc.ctl_flush_tb()
+    return plans
 
 
 def measure_lines(probe: Probe, moves: int) -> dict[str, list[int]]:
@@ -1002,6 +1069,11 @@ def main() -> int:
     parser.add_argument("--line-budget", action="append", default=[], metavar="PROFILE=N",
                         help="fail when a cycle of a 3-axis line driven by PROFILE (mcx514, trapezoid) "
                              "executes more than N instructions (profile plus geometry); repeatable")
+    parser.add_argument("--mcx514-plan-moves", type=int, default=500,
+                        help="random MCX514 S-curve moves over the whole register ranges whose plan is "
+                             "counted (default %(default)s)")
+    parser.add_argument("--mcx514-plan-budget", type=int,
+                        help="fail when the MCX514 S-curve's plan executes more instructions")
     parser.add_argument("--circle-moves", type=int, default=20,
                         help="random MCX514 circles stepped to the end, besides the manual's (default %(default)s)")
     parser.add_argument("--circle-budget", action="append", default=[], metavar="PROFILE=N",
@@ -1135,15 +1207,24 @@ def main() -> int:
         for name, counts_ in lines.items():
             print(f"  {'3-axis line, ' + name:26} max {max(counts_):4}, mean {statistics.fmean(counts_):6.1f} "
                   f"instructions ({len(counts_)} cycles)")
-        # The same drives without the geometry: the MCX514 trapezoid as a one-axis generator,
-        # held to SPEC §16's 40 per cycle with the others (its cycles laid out as runs, #14).
-        alone, axis_setups = measure_mcx514_axis(probe, args.line_moves)
-        others["Mcx514Trapezoidal alone"] = alone
-        print(f"  {'Mcx514Trapezoidal alone':26} max {max(alone):4}, mean {statistics.fmean(alone):6.1f} "
-              f"instructions ({len(alone)} cycles)")
-        print(f"  {'Mcx514Trapezoidal set-up':26} max {max(axis_setups):4}, mean "
-              f"{statistics.fmean(axis_setups):6.1f} instructions ({len(axis_setups)} moves: the registers "
-              "converted from pps with f64 arithmetic, emulated on this core, and the plan; reported)")
+        # The same drives without the geometry: the MCX514 profiles as one-axis generators, held
+        # to SPEC §16's 40 per cycle with the others (their cycles laid out as runs, #12, #14).
+        measured_alone = measure_mcx514_axis(probe, args.line_moves)
+        for profile, name in (("mcx514", "Mcx514Trapezoidal"), ("mcx514_scurve", "Mcx514SCurve")):
+            alone, axis_setups = measured_alone[profile]
+            others[f"{name} alone"] = alone
+            print(f"  {name + ' alone':26} max {max(alone):4}, mean {statistics.fmean(alone):6.1f} "
+                  f"instructions ({len(alone)} cycles)")
+            print(f"  {name + ' set-up':26} max {max(axis_setups):4}, mean "
+                  f"{statistics.fmean(axis_setups):6.1f} instructions ({len(axis_setups)} moves: the "
+                  "registers converted from pps with f64 arithmetic, emulated on this core, and the "
+                  "plan; reported)")
+        mcx514_plans = measure_mcx514_plans(probe, args.mcx514_plan_moves) if args.mcx514_plan_moves else []
+        if mcx514_plans:
+            ordered = sorted(mcx514_plans)
+            print(f"  {'Mcx514SCurve plan':26} max {ordered[-1]:5}, p99 {ordered[len(ordered) * 99 // 100]:5}, "
+                  f"mean {statistics.fmean(ordered):7.1f} instructions ({len(ordered)} moves over the whole "
+                  "register ranges: Layout::lay_out and its callees)")
         print(f"  ({time.monotonic() - lines_started:.1f} s)")
         print(f"== MCX514 circular interpolation, one call per cycle (profile and arc; the manual's "
               f"circle and {args.circle_moves} random ones, each to its end)")
@@ -1175,6 +1256,7 @@ def main() -> int:
     planning_ok = within("planning", counts, args.plan_budget, f" (move {worst[0]})", "moves")
     planning_ok &= within("Trapezoid set-up", setups, args.setup_budget, "", "moves")
     planning_ok &= within("an S-curve stop command", stops, args.stop_budget, "", "stops")
+    planning_ok &= within("the MCX514 S-curve's plan", mcx514_plans, args.mcx514_plan_budget, "", "moves")
     stepping_ok = within("one step of SCurve", all_steps, args.step_budget, "", "cycles")
     for name, counts_ in others.items():
         stepping_ok &= within(f"one step of {name}", counts_, args.step_budget, "", "cycles")

@@ -481,12 +481,12 @@ fn blame(given: &[(String, String)], error: &Error) -> String {
     }
 }
 
-/// The driving axis's profile: the MCX514 trapezoid (boxed: its cycles laid out ahead make it
-/// the larger), or its S-curve.
+/// The driving axis's profile: the MCX514 trapezoid or its S-curve (each boxed: their cycles
+/// laid out ahead make them large).
 #[derive(Debug, Clone)]
 pub enum Profile {
     Trapezoidal(Box<Mcx514Trapezoidal>),
-    SCurve(Mcx514SCurve),
+    SCurve(Box<Mcx514SCurve>),
 }
 
 impl Profile {
@@ -501,21 +501,21 @@ impl Profile {
     ) -> Result<Self, Error> {
         Ok(match jerks {
             None => Profile::Trapezoidal(Box::new(Mcx514Trapezoidal::new(parameters, cycle)?)),
-            Some((jerk, deceleration_jerk)) => Profile::SCurve(Mcx514SCurve::new(
+            Some((jerk, deceleration_jerk)) => Profile::SCurve(Box::new(Mcx514SCurve::new(
                 Mcx514ScurveParameters {
                     trapezoid: parameters,
                     jerk,
                     deceleration_jerk,
                 },
                 cycle,
-            )?),
+            )?)),
         })
     }
 
     fn axis(&mut self) -> &mut dyn ProfileGenerator {
         match self {
             Profile::Trapezoidal(axis) => axis.as_mut(),
-            Profile::SCurve(axis) => axis,
+            Profile::SCurve(axis) => axis.as_mut(),
         }
     }
 }

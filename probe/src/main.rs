@@ -26,8 +26,9 @@
 //!   linear interpolation (SPEC §12.3) driven by one of the profiles (`mcx514` the MCX514
 //!   trapezoid, `trapezoid` the crate's `Trapezoidal`, `mcx514_scurve` the MCX514 S-curve), stepped one cycle per call through
 //!   `LinearInterpolation::step`: the measured cost is the profile plus the geometry (SPEC §16).
-//! - `probe_axis_step_mcx514()`, `probe_axis_complete()`: the MCX514 trapezoid alone (set up by
-//!   `probe_line_setup` with profile 3), its cycle as a one-axis generator's.
+//! - `probe_axis_step_<profile>()`, `probe_axis_complete()`: the MCX514 trapezoid or S-curve
+//!   alone (set up by `probe_line_setup` with profile 3 or 4), its cycle as a one-axis
+//!   generator's.
 //! - `probe_circle_setup(words)`, `probe_circle_step_<profile>()`, `probe_circle_complete(p)`,
 //!   `probe_circle_axes()`: an MCX514 circular interpolation (SPEC §12.4) driven by
 //!   `Mcx514Trapezoidal` or the crate's `Trapezoidal`; a step is the profile's cycle plus the
@@ -433,14 +434,14 @@ pub unsafe extern "C" fn probe_trapezoid_command(command: u32, value: i32) {
 }
 
 /// The 3-axis line being stepped and its driving profile (one slot per profile kind).
-static LINE_MCX514: Other<LinearInterpolation<'static, Mcx514Trapezoidal, 3>> =
+static LINE_MCX514: Other<Stepped<LinearInterpolation<'static, Mcx514Trapezoidal, 3>>> =
     Other(UnsafeCell::new(MaybeUninit::uninit()));
 static LINE_MCX514_PROFILE: Other<Mcx514Trapezoidal> =
     Other(UnsafeCell::new(MaybeUninit::uninit()));
-static LINE_TRAPEZOID: Other<LinearInterpolation<'static, Trapezoidal, 3>> =
+static LINE_TRAPEZOID: Other<Stepped<LinearInterpolation<'static, Trapezoidal, 3>>> =
     Other(UnsafeCell::new(MaybeUninit::uninit()));
 static LINE_TRAPEZOID_PROFILE: Other<Trapezoidal> = Other(UnsafeCell::new(MaybeUninit::uninit()));
-static LINE_MCX514_SCURVE: Other<LinearInterpolation<'static, Mcx514SCurve, 3>> =
+static LINE_MCX514_SCURVE: Other<Stepped<LinearInterpolation<'static, Mcx514SCurve, 3>>> =
     Other(UnsafeCell::new(MaybeUninit::uninit()));
 static LINE_MCX514_SCURVE_PROFILE: Other<Mcx514SCurve> =
     Other(UnsafeCell::new(MaybeUninit::uninit()));
@@ -448,13 +449,16 @@ static LINE_MCX514_SCURVE_PROFILE: Other<Mcx514SCurve> =
 /// S-curve.
 static LINE_KIND: AtomicU32 = AtomicU32::new(u32::MAX);
 /// The MCX514 trapezoid alone (the driving axis as a one-axis generator, no geometry), set up
-/// by `probe_line_setup` with profile 3. (Not the MCX514 S-curve: a second caller of its step
-/// makes LLVM keep that step out of line, and the line's own count with it.)
+/// by `probe_line_setup` with profile 3.
 static AXIS_MCX514: Other<Mcx514Trapezoidal> = Other(UnsafeCell::new(MaybeUninit::uninit()));
+/// The MCX514 S-curve alone, set up by `probe_line_setup` with profile 4.
+static AXIS_MCX514_SCURVE: Other<Mcx514SCurve> = Other(UnsafeCell::new(MaybeUninit::uninit()));
+/// Which axis alone the last set-up filled: 3 the trapezoid, 4 the S-curve.
+static AXIS_KIND: AtomicU32 = AtomicU32::new(u32::MAX);
 
 /// Sets up the stepped 3-axis line from `words`: `[0]` the profile (0 the MCX514 trapezoid,
-/// 1 the crate's `Trapezoidal`, 2 the MCX514 S-curve; 3 the MCX514 trapezoid alone, for
-/// `probe_axis_step_mcx514`, no line), `[1..4]` the finish point (pulses, `i32` bits), then
+/// 1 the crate's `Trapezoidal`, 2 the MCX514 S-curve; 3 the MCX514 trapezoid and 4 the MCX514
+/// S-curve alone, for `probe_axis_step_<profile>`, no line), `[1..4]` the finish point (pulses, `i32` bits), then
 ///
 /// - MCX514: `[4]` the cycle time in µs, `[5]` SV, `[6]` DV (pps), `[7]` AC, `[8]` DC (pps/s),
 ///   `[9]` the deceleration mode (0 automatic, 1 manual at `[10]`, 2 disabled); the S-curve
@@ -500,16 +504,22 @@ pub unsafe extern "C" fn probe_line_setup(words: *const u32) -> u64 {
             if word(0) == 3 {
                 // SAFETY: single-threaded; no reference to the slot outlives a call.
                 unsafe { (*AXIS_MCX514.0.get()).write(profile) };
+                AXIS_KIND.store(3, Ordering::Relaxed);
                 return steps;
             }
             // SAFETY: single-threaded; the profile lives in its static for as long as the line
             // that borrows it (both are replaced together, by the next set-up).
             let profile = unsafe { (*LINE_MCX514_PROFILE.0.get()).write(profile) };
             // SAFETY: as above.
-            unsafe { (*LINE_MCX514.0.get()).write(line.drive(profile)) };
+            unsafe {
+                (*LINE_MCX514.0.get()).write(Stepped {
+                    line: line.drive(profile),
+                    axes: [0; 3],
+                })
+            };
             LINE_KIND.store(0, Ordering::Relaxed);
         }
-        2 => {
+        2 | 4 => {
             let profile = || -> Result<Mcx514SCurve, Error> {
                 Mcx514SCurve::new(
                     Mcx514ScurveParameters {
@@ -523,10 +533,21 @@ pub unsafe extern "C" fn probe_line_setup(words: *const u32) -> u64 {
             let Ok(profile) = profile() else {
                 return REFUSED;
             };
+            if word(0) == 4 {
+                // SAFETY: single-threaded; no reference to the slot outlives a call.
+                unsafe { (*AXIS_MCX514_SCURVE.0.get()).write(profile) };
+                AXIS_KIND.store(4, Ordering::Relaxed);
+                return steps;
+            }
             // SAFETY: as for the MCX514 slots.
             let profile = unsafe { (*LINE_MCX514_SCURVE_PROFILE.0.get()).write(profile) };
             // SAFETY: as above.
-            unsafe { (*LINE_MCX514_SCURVE.0.get()).write(line.drive(profile)) };
+            unsafe {
+                (*LINE_MCX514_SCURVE.0.get()).write(Stepped {
+                    line: line.drive(profile),
+                    axes: [0; 3],
+                })
+            };
             LINE_KIND.store(2, Ordering::Relaxed);
         }
         _ => {
@@ -545,27 +566,40 @@ pub unsafe extern "C" fn probe_line_setup(words: *const u32) -> u64 {
             // SAFETY: as for the MCX514 slots.
             let profile = unsafe { (*LINE_TRAPEZOID_PROFILE.0.get()).write(profile) };
             // SAFETY: as above.
-            unsafe { (*LINE_TRAPEZOID.0.get()).write(line.drive(profile)) };
+            unsafe {
+                (*LINE_TRAPEZOID.0.get()).write(Stepped {
+                    line: line.drive(profile),
+                    axes: [0; 3],
+                })
+            };
             LINE_KIND.store(1, Ordering::Relaxed);
         }
     }
     steps
 }
 
-/// Where each cycle's axes go, as a caller would output them to its pulse generators.
-static LINE_AXES: Other<[i32; 3]> = Other(UnsafeCell::new(MaybeUninit::uninit()));
+/// A line being stepped and where each cycle's axes go, as a caller would output them to its
+/// pulse generators: beside the line, so that every profile's line reaches both from one base
+/// address. (With the axes in a static of their own, LLVM merged it with one profile's line
+/// only: the others paid two instructions a cycle to form its address, which measured the
+/// harness, not the line.)
+struct Stepped<L> {
+    line: L,
+    axes: [i32; 3],
+}
 
 /// One cycle's result handed on: every axis stored with a volatile write, as to a peripheral's
-/// registers (a plain store to a static nothing reads would be optimized away, and the geometry
-/// with it), the driving position returned.
+/// registers (a plain store nothing reads would be optimized away, and the geometry with it),
+/// the driving step count returned. (The axes are what a line outputs; the driving axis's 64-bit
+/// position, returned before, had to be held across the geometry, which spilled it to the
+/// stack: four instructions a cycle that measured the harness, not the line.)
 #[inline(always)]
-fn output(state: InterpolationState<3>) -> i64 {
-    let axes = LINE_AXES.0.get().cast::<i32>();
-    for (i, axis) in state.axes.into_iter().enumerate() {
-        // SAFETY: three aligned words of a static; single-threaded.
-        unsafe { axes.add(i).write_volatile(axis) };
+fn output(state: InterpolationState<3>, out: &mut [i32; 3]) -> u32 {
+    for (slot, axis) in out.iter_mut().zip(state.axes) {
+        // SAFETY: a valid, aligned word (a reference).
+        unsafe { core::ptr::write_volatile(slot, axis) };
     }
-    state.driving.position.to_bits()
+    state.step
 }
 
 /// Advances the MCX514-driven line one cycle: `LinearInterpolation::step`.
@@ -573,10 +607,10 @@ fn output(state: InterpolationState<3>) -> i64 {
 /// # Safety
 /// `probe_line_setup` succeeded before with profile 0.
 #[no_mangle]
-pub unsafe extern "C" fn probe_line_step_mcx514() -> i64 {
+pub unsafe extern "C" fn probe_line_step_mcx514() -> u32 {
     // SAFETY: initialized by probe_line_setup (the caller's contract); single-threaded.
-    let line = unsafe { (*LINE_MCX514.0.get()).assume_init_mut() };
-    output(line.step())
+    let stepped = unsafe { (*LINE_MCX514.0.get()).assume_init_mut() };
+    output(stepped.line.step(), &mut stepped.axes)
 }
 
 /// Advances the trapezoid-driven line one cycle: `LinearInterpolation::step`.
@@ -584,10 +618,10 @@ pub unsafe extern "C" fn probe_line_step_mcx514() -> i64 {
 /// # Safety
 /// `probe_line_setup` succeeded before with profile 1.
 #[no_mangle]
-pub unsafe extern "C" fn probe_line_step_trapezoid() -> i64 {
+pub unsafe extern "C" fn probe_line_step_trapezoid() -> u32 {
     // SAFETY: initialized by probe_line_setup (the caller's contract); single-threaded.
-    let line = unsafe { (*LINE_TRAPEZOID.0.get()).assume_init_mut() };
-    output(line.step())
+    let stepped = unsafe { (*LINE_TRAPEZOID.0.get()).assume_init_mut() };
+    output(stepped.line.step(), &mut stepped.axes)
 }
 
 /// Advances the MCX514-S-curve-driven line one cycle: `LinearInterpolation::step`.
@@ -595,10 +629,10 @@ pub unsafe extern "C" fn probe_line_step_trapezoid() -> i64 {
 /// # Safety
 /// `probe_line_setup` succeeded before with profile 2.
 #[no_mangle]
-pub unsafe extern "C" fn probe_line_step_mcx514_scurve() -> i64 {
+pub unsafe extern "C" fn probe_line_step_mcx514_scurve() -> u32 {
     // SAFETY: initialized by probe_line_setup (the caller's contract); single-threaded.
-    let line = unsafe { (*LINE_MCX514_SCURVE.0.get()).assume_init_mut() };
-    output(line.step())
+    let stepped = unsafe { (*LINE_MCX514_SCURVE.0.get()).assume_init_mut() };
+    output(stepped.line.step(), &mut stepped.axes)
 }
 
 /// Advances the MCX514 trapezoid alone one cycle (a one-axis generator's cycle, SPEC §16).
@@ -612,14 +646,34 @@ pub unsafe extern "C" fn probe_axis_step_mcx514() -> i64 {
     axis.step().position.to_bits()
 }
 
-/// 1 when the MCX514 trapezoid set up alone last is complete, else 0.
+/// Advances the MCX514 S-curve alone one cycle (a one-axis generator's cycle, SPEC §16).
 ///
 /// # Safety
-/// `probe_line_setup` succeeded before with profile 3.
+/// `probe_line_setup` succeeded before with profile 4.
+#[no_mangle]
+pub unsafe extern "C" fn probe_axis_step_mcx514_scurve() -> i64 {
+    // SAFETY: initialized by probe_line_setup (the caller's contract); single-threaded.
+    let axis = unsafe { (*AXIS_MCX514_SCURVE.0.get()).assume_init_mut() };
+    axis.step().position.to_bits()
+}
+
+/// 1 when the MCX514 profile set up alone last (profile 3 or 4) is complete, else 0.
+///
+/// # Safety
+/// `probe_line_setup` succeeded before with profile 3 or 4.
 #[no_mangle]
 pub unsafe extern "C" fn probe_axis_complete() -> u32 {
-    // SAFETY: initialized by probe_line_setup (the caller's contract); single-threaded.
-    u32::from(unsafe { (*AXIS_MCX514.0.get()).assume_init_ref() }.is_complete())
+    // SAFETY: initialized by probe_line_setup for the kind it recorded; single-threaded.
+    let complete = unsafe {
+        if AXIS_KIND.load(Ordering::Relaxed) == 4 {
+            (*AXIS_MCX514_SCURVE.0.get())
+                .assume_init_ref()
+                .is_complete()
+        } else {
+            (*AXIS_MCX514.0.get()).assume_init_ref().is_complete()
+        }
+    };
+    u32::from(complete)
 }
 
 /// 1 when the line set up last is complete, else 0; the axes' positions in `out[0..3]`.
@@ -632,15 +686,15 @@ pub unsafe extern "C" fn probe_line_complete(out: *mut i32) -> u32 {
     let (complete, axes) = unsafe {
         match LINE_KIND.load(Ordering::Relaxed) {
             0 => {
-                let line = (*LINE_MCX514.0.get()).assume_init_ref();
+                let line = &(*LINE_MCX514.0.get()).assume_init_ref().line;
                 (line.is_complete(), line.state().axes)
             }
             2 => {
-                let line = (*LINE_MCX514_SCURVE.0.get()).assume_init_ref();
+                let line = &(*LINE_MCX514_SCURVE.0.get()).assume_init_ref().line;
                 (line.is_complete(), line.state().axes)
             }
             _ => {
-                let line = (*LINE_TRAPEZOID.0.get()).assume_init_ref();
+                let line = &(*LINE_TRAPEZOID.0.get()).assume_init_ref().line;
                 (line.is_complete(), line.state().axes)
             }
         }
@@ -740,6 +794,9 @@ pub unsafe extern "C" fn probe_circle_setup(words: *const u32) -> u32 {
     0
 }
 
+/// Where each cycle of a circle puts its axes (x, y; the third word unused).
+static CIRCLE_AXES: Other<[i32; 3]> = Other(UnsafeCell::new(MaybeUninit::uninit()));
+
 /// One cycle of a circle: the profile's step and the arc's jump to the step it reached (what
 /// `CircularInterpolation::step` does, `ArcWalk::advance_to_whole`), both axes stored with volatile writes as `output` does
 /// for the line; returns the driving position.
@@ -750,7 +807,7 @@ fn circle_step<G: ProfileGenerator>(circle: &mut Circle<G>) -> i64 {
     let axes = circle
         .walk
         .advance_to_whole((driving.position.to_bits() >> 32) as i32);
-    let out = LINE_AXES.0.get().cast::<i32>();
+    let out = CIRCLE_AXES.0.get().cast::<i32>();
     for (i, axis) in axes.into_iter().enumerate() {
         // SAFETY: aligned words of a static (three, two used); single-threaded.
         unsafe { out.add(i).write_volatile(axis) };
@@ -779,7 +836,7 @@ pub unsafe extern "C" fn probe_circle_step_trapezoid() -> i64 {
 }
 
 /// 1 when the stepped circle's profile (0 MCX514, 1 trapezoid) is complete, else 0; the axes
-/// are in `LINE_AXES`.
+/// are in `CIRCLE_AXES`.
 ///
 /// # Safety
 /// `probe_circle_setup` succeeded before with that profile.
@@ -801,7 +858,7 @@ pub unsafe extern "C" fn probe_circle_complete(profile: u32) -> u32 {
 /// The stepped circle's axes after the last step: x in the low word, y in the high.
 #[no_mangle]
 pub extern "C" fn probe_circle_axes() -> u64 {
-    let axes = LINE_AXES.0.get().cast::<i32>();
+    let axes = CIRCLE_AXES.0.get().cast::<i32>();
     // SAFETY: aligned words of a static, written by the last step; single-threaded.
     let (x, y) = unsafe { (axes.read_volatile(), axes.add(1).read_volatile()) };
     u64::from(x as u32) | (u64::from(y as u32) << 32)

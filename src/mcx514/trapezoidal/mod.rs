@@ -50,21 +50,80 @@ pub struct Mcx514Parameters {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) struct PerCycle {
     /// The finish point, raw I32F32 pulses.
-    finish: i64,
-    initial: i64,
-    drive: i64,
-    acceleration: i64,
-    deceleration: i64,
+    pub(in crate::mcx514) finish: i64,
+    pub(in crate::mcx514) initial: i64,
+    pub(in crate::mcx514) drive: i64,
+    pub(in crate::mcx514) acceleration: i64,
+    pub(in crate::mcx514) deceleration: i64,
     /// DV − AC (may be negative): a cycle that begins below it speeds up by AC and stays below
     /// DV, so the sum is never formed where it could pass i64 (AC alone can come near 2⁶³ raw).
     below_last_speed_up: i64,
     /// The manual deceleration point, raw I32F32 whole pulses, held below 2³¹ pulses (every
     /// point from 2³⁰ on is past every finish point, so never reached); `i64::MAX` unless manual.
-    manual_point: i64,
-    automatic: bool,
-    disabled: bool,
+    pub(in crate::mcx514) manual_point: i64,
+    pub(in crate::mcx514) automatic: bool,
+    pub(in crate::mcx514) disabled: bool,
     /// max(DC, SV): a larger drop in one cycle is exempt (a late finish, an abrupt stop).
     largest_drop: i64,
+}
+
+impl PerCycle {
+    /// The registers checked and converted to per-cycle values of `cycle` (shared with the
+    /// S-curve, which adds its jerks). Errors as [`Mcx514Trapezoidal::new`].
+    pub(super) fn new(parameters: Mcx514Parameters, cycle: CycleTime) -> Result<Self, Error> {
+        if parameters.pulses > FinishPoint::MAX_BITS as u32 {
+            return Err(Error::out_of_range_bits(
+                FinishPoint::PARAMETER,
+                i64::from(parameters.pulses),
+                0,
+                FinishPoint::RANGE,
+            ));
+        }
+        // In range, so the cast is exact.
+        let finish = FinishPoint::from_bits(parameters.pulses as i32)?;
+        let (initial, drive) = (parameters.initial_speed, parameters.drive_speed);
+        if initial.to_bits() > drive.to_bits() {
+            return Err(Error::out_of_range_bits(
+                InitialSpeed::PARAMETER,
+                i64::from(initial.to_bits()),
+                0,
+                InitialSpeed::RANGE.up_to_bits(i64::from(drive.to_bits()), 0),
+            ));
+        }
+        let automatic = parameters.deceleration_mode == DecelerationMode::Automatic;
+        if automatic && parameters.acceleration.to_bits() != parameters.deceleration.to_bits() {
+            return Err(Error::Refused {
+                parameter: Deceleration::PARAMETER,
+                reason: "to differ from the acceleration with automatic deceleration (the chip \
+                         needs a manual deceleration point for that)",
+            });
+        }
+        let manual_point = match parameters.deceleration_mode {
+            // Past 2³¹ − 1 pulses the shift would leave i64; such a point is never reached.
+            DecelerationMode::Manual(point) => {
+                i64::from(point.to_bits().min(i32::MAX as u32)) << 32
+            }
+            _ => i64::MAX,
+        };
+        let finish = i64::from(finish.to_bits()) << 32;
+        // Converted in the registers' order, so the first bad one is the one reported.
+        let initial = initial.per_cycle(cycle)?.to_bits();
+        let drive = drive.per_cycle(cycle)?.to_bits();
+        let acceleration = parameters.acceleration.per_cycle(cycle)?.to_bits();
+        let deceleration = parameters.deceleration.per_cycle(cycle)?.to_bits();
+        Ok(PerCycle {
+            finish,
+            initial,
+            drive,
+            acceleration,
+            deceleration,
+            below_last_speed_up: drive - acceleration,
+            manual_point,
+            automatic,
+            disabled: parameters.deceleration_mode == DecelerationMode::Disabled,
+            largest_drop: deceleration.max(initial),
+        })
+    }
 }
 
 /// The MCX514's trapezoidal acceleration/deceleration on the driving axis (SPEC §12.2), cycle by
@@ -136,65 +195,15 @@ impl Mcx514Trapezoidal {
     /// ([`Error::Underflow`], [`Error::OutOfRange`]) when `cycle` makes a register vanish or
     /// overflow.
     pub fn new(parameters: Mcx514Parameters, cycle: CycleTime) -> Result<Self, Error> {
-        if parameters.pulses > FinishPoint::MAX_BITS as u32 {
-            return Err(Error::out_of_range_bits(
-                FinishPoint::PARAMETER,
-                i64::from(parameters.pulses),
-                0,
-                FinishPoint::RANGE,
-            ));
-        }
-        // In range, so the cast is exact.
-        let finish = FinishPoint::from_bits(parameters.pulses as i32)?;
-        let (initial, drive) = (parameters.initial_speed, parameters.drive_speed);
-        if initial.to_bits() > drive.to_bits() {
-            return Err(Error::out_of_range_bits(
-                InitialSpeed::PARAMETER,
-                i64::from(initial.to_bits()),
-                0,
-                InitialSpeed::RANGE.up_to_bits(i64::from(drive.to_bits()), 0),
-            ));
-        }
-        let automatic = parameters.deceleration_mode == DecelerationMode::Automatic;
-        if automatic && parameters.acceleration.to_bits() != parameters.deceleration.to_bits() {
-            return Err(Error::Refused {
-                parameter: Deceleration::PARAMETER,
-                reason: "to differ from the acceleration with automatic deceleration (the chip \
-                         needs a manual deceleration point for that)",
-            });
-        }
-        let manual_point = match parameters.deceleration_mode {
-            // Past 2³¹ − 1 pulses the shift would leave i64; such a point is never reached.
-            DecelerationMode::Manual(point) => {
-                i64::from(point.to_bits().min(i32::MAX as u32)) << 32
-            }
-            _ => i64::MAX,
-        };
-        let finish = i64::from(finish.to_bits()) << 32;
-        // Converted in the registers' order, so the first bad one is the one reported.
-        let initial = initial.per_cycle(cycle)?.to_bits();
-        let drive = drive.per_cycle(cycle)?.to_bits();
-        let acceleration = parameters.acceleration.per_cycle(cycle)?.to_bits();
-        let deceleration = parameters.deceleration.per_cycle(cycle)?.to_bits();
-        let profile = PerCycle {
-            finish,
-            initial,
-            drive,
-            acceleration,
-            deceleration,
-            below_last_speed_up: drive - acceleration,
-            manual_point,
-            automatic,
-            disabled: parameters.deceleration_mode == DecelerationMode::Disabled,
-            largest_drop: deceleration.max(initial),
-        };
+        let profile = PerCycle::new(parameters, cycle)?;
+        let (finish, automatic) = (profile.finish, profile.automatic);
         let rule = Rule {
             phase: Phase::Start,
             // While speeding up (automatic): 2p ≥ finish, i.e. p ≥ ⌈finish/2⌉.
             trigger: if automatic {
                 (finish + 1) >> 1
             } else {
-                manual_point
+                profile.manual_point
             },
             stopping: false,
             complete: finish == 0,
@@ -268,16 +277,15 @@ impl Mcx514Trapezoidal {
     /// The cycle of slot [`ELSEWHERE`] (a plan out of slots): taken by the rule, then a new plan.
     #[cold]
     #[inline(never)]
-    fn step_otherwise(&mut self) -> State {
+    fn step_otherwise(&mut self) {
         let mut rule = self.plan.rules[ELSEWHERE];
         let (position, velocity) = (self.state.position.to_bits(), self.state.velocity.to_bits());
         let (next, wanted) = rule.cycle(&self.profile, position, velocity);
-        let state = advance(&mut self.state, I32F32::from_bits(next));
+        advance(&mut self.state, I32F32::from_bits(next));
         self.replan(rule);
         if rule.complete {
             self.plan.cut_short = wanted > next;
         }
-        state
     }
 }
 
@@ -293,7 +301,12 @@ impl ProfileGenerator for Mcx514Trapezoidal {
             End::No => {}
             // The run's last cycle: the next run is already laid out.
             End::Run => self.current = current + 1,
-            End::Lap if current == ELSEWHERE => return self.step_otherwise(),
+            End::Lap if current == ELSEWHERE => {
+                // Returns nothing: a state returned from a call out of line needs a stack slot
+                // in every caller, set up on every cycle.
+                self.step_otherwise();
+                return self.state;
+            }
             End::Lap => self.plan.runs[current].lap(),
         }
         advance(&mut self.state, I32F32::from_bits(velocity))
