@@ -34,10 +34,10 @@ use criterion::{
     black_box, criterion_group, criterion_main, BenchmarkGroup, Criterion, Throughput,
 };
 use profilegen::format::CycleTime;
-use profilegen::interpolation::{Arc, Direction, Line};
+use profilegen::interpolation::{Arc, Direction};
 use profilegen::{
-    DecelerationMode, Mcx514Parameters, Mcx514SCurve, Mcx514ScurveParameters, Mcx514Trapezoidal,
-    ProfileGenerator, State, Trapezoidal, TrapezoidalParameters,
+    DecelerationMode, Mcx514Trapezoidal, ProfileGenerator, State, Trapezoidal,
+    TrapezoidalParameters,
 };
 
 /// The longest window timed, cycles or steps.
@@ -134,61 +134,33 @@ fn cycle_cost(c: &mut Criterion) {
     );
     generator_phases(&mut group, "trapezoidal", &common::trapezoidal());
     generator_phases(&mut group, "scurve", &common::scurve());
+    // The MCX514 profiles on reference 003's line (20 steps/cycle): the cost of a cycle does not
+    // depend on the move's size.
+    generator_phases(&mut group, "mcx514", &common::manual_line_mcx514());
+    generator_phases(
+        &mut group,
+        "mcx514_scurve",
+        &common::manual_line_mcx514_scurve(),
+    );
+    // The electronic gear engaged behind a master counting 100 a cycle: its cruise.
+    time_windows(
+        &mut group,
+        "gearing/cruise",
+        WINDOW,
+        || (common::gear(), 0i32),
+        |(gear, master)| {
+            *master = master.wrapping_add(100);
+            fold(0, gear.follow(*master))
+        },
+    );
     group.finish();
-}
-
-/// Reference 003's 3-axis line: finish (−20000, 30000, −50000), 50,000 steps.
-fn manual_line() -> Line<3> {
-    Line::from_pulses([-20_000, 30_000, -50_000]).unwrap()
-}
-
-/// Its MCX514 trapezoid at a 1 ms cycle: SV 500 pps, DV 20,000 pps, AC = DC = 65,000 pps/s
-/// (0.5 and 20 steps/cycle, 0.065 steps/cycle²), automatic deceleration.
-fn manual_line_mcx514() -> Mcx514Trapezoidal {
-    use profilegen::format::mcx514::{Acceleration, Deceleration, DriveSpeed, InitialSpeed};
-    Mcx514Trapezoidal::new(
-        Mcx514Parameters {
-            pulses: manual_line().steps(),
-            initial_speed: InitialSpeed::from_bits(500).unwrap(),
-            drive_speed: DriveSpeed::from_bits(20_000).unwrap(),
-            acceleration: Acceleration::from_bits(65_000).unwrap(),
-            deceleration: Deceleration::from_bits(65_000).unwrap(),
-            deceleration_mode: DecelerationMode::Automatic,
-        },
-        CycleTime::from_seconds(1e-3).unwrap(),
-    )
-    .unwrap()
-}
-
-/// The MCX514 S-curve on the same line: the same registers, JK = DJ = 650,000 pps/s² (the rate
-/// reaches AC in 0.1 s).
-fn manual_line_mcx514_scurve() -> Mcx514SCurve {
-    use profilegen::format::mcx514::{
-        Acceleration, Deceleration, DecelerationJerk, DriveSpeed, InitialSpeed, Jerk,
-    };
-    Mcx514SCurve::new(
-        Mcx514ScurveParameters {
-            trapezoid: Mcx514Parameters {
-                pulses: manual_line().steps(),
-                initial_speed: InitialSpeed::from_bits(500).unwrap(),
-                drive_speed: DriveSpeed::from_bits(20_000).unwrap(),
-                acceleration: Acceleration::from_bits(65_000).unwrap(),
-                deceleration: Deceleration::from_bits(65_000).unwrap(),
-                deceleration_mode: DecelerationMode::Automatic,
-            },
-            jerk: Jerk::from_bits(650_000).unwrap(),
-            deceleration_jerk: DecelerationJerk::from_bits(650_000).unwrap(),
-        },
-        CycleTime::from_seconds(1e-3).unwrap(),
-    )
-    .unwrap()
 }
 
 /// The crate's trapezoid on the same line: 20 steps/cycle, 0.065 steps/cycle².
 fn manual_line_trapezoid() -> Trapezoidal {
     use profilegen::format::juno::{Acceleration, TargetVelocity};
     Trapezoidal::new(TrapezoidalParameters {
-        destination: manual_line().steps() as i32,
+        destination: common::manual_line().steps() as i32,
         max_velocity: TargetVelocity::from_num(20.0).unwrap(),
         acceleration: Acceleration::from_num(0.065).unwrap(),
         deceleration: Acceleration::ZERO,
@@ -204,7 +176,7 @@ fn line_phases<G: ProfileGenerator + Clone>(
     name: &str,
     start: &G,
 ) {
-    let line = manual_line();
+    let line = common::manual_line();
     for (phase, label) in PHASES {
         let (first, length) = generator_window(start, phase, WINDOW);
         if length == 0 {
@@ -325,8 +297,12 @@ fn circle_cost(c: &mut Criterion) {
 
 fn line_cost(c: &mut Criterion) {
     let mut group = c.benchmark_group("3-axis line per cycle");
-    line_phases(&mut group, "mcx514", &manual_line_mcx514());
-    line_phases(&mut group, "mcx514_scurve", &manual_line_mcx514_scurve());
+    line_phases(&mut group, "mcx514", &common::manual_line_mcx514());
+    line_phases(
+        &mut group,
+        "mcx514_scurve",
+        &common::manual_line_mcx514_scurve(),
+    );
     line_phases(&mut group, "trapezoidal", &manual_line_trapezoid());
     group.finish();
 }

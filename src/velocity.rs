@@ -4,6 +4,7 @@ use fixed::types::I32F32;
 
 use crate::format::juno::{Acceleration, TargetVelocity};
 use crate::predict::{Piece, Prediction};
+use crate::replay::{End, Replay};
 use crate::state::{advance, Limits, ProfileGenerator, State, StopKind};
 use crate::Error;
 
@@ -27,6 +28,11 @@ pub struct VelocityParameters {
 /// is taken at the deceleration, and from the next cycle on the axis accelerates away from zero at
 /// the acceleration. Every parameter applies immediately when set.
 ///
+/// Every command lays the cycles out ahead, as at most five runs of constant velocity change
+/// (an abrupt stop's cycle, toward zero at the deceleration, the cycle that reaches or crosses
+/// zero, away from zero at the acceleration, the target for ever), and a step replays them: one
+/// addition and a countdown (SPEC §16).
+///
 /// ```
 /// use profilegen::format::juno::{Acceleration, TargetVelocity};
 /// use profilegen::{ProfileGenerator, VelocityContouring, VelocityParameters};
@@ -42,6 +48,12 @@ pub struct VelocityParameters {
 /// ```
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct VelocityContouring {
+    // The per-cycle fields first.
+    /// The run under way: an index into `runs` (always below [`RUNS`]).
+    current: usize,
+    state: State,
+    /// The cycles until the next command (see [`VelocityContouring::lay_out`]).
+    runs: [Replay; RUNS],
     /// Target velocity as I32F32 bits (the 16.16 register shifted left 16).
     target_velocity: i64,
     /// Acceleration as I32F32 bits (the 8.24 register shifted left 8).
@@ -50,14 +62,19 @@ pub struct VelocityContouring {
     deceleration: i64,
     /// The register as set, so that a later acceleration change re-resolves a zero deceleration.
     deceleration_register: Acceleration,
-    state: State,
-    /// An abrupt stop waits for the next cycle.
-    abrupt_pending: bool,
-    /// The state the last abrupt stop produced, until a command: while the generator still
-    /// shows it, its last cycle was that stop (for [`ProfileGenerator::limits`], so that stepping
-    /// keeps no bookkeeping of its own).
+    /// The plan's first run is an abrupt stop's cycle (velocity zero, position held): while it
+    /// is under way, the stop is still to come.
+    starts_abrupt: bool,
+    /// The state the last abrupt stop produced (or, while it is still to come, will produce),
+    /// until a new velocity: while the generator still shows it, its last cycle was that stop
+    /// (for [`ProfileGenerator::limits`], so that stepping keeps no bookkeeping of its own).
     abrupt_state: Option<State>,
+    /// The one in force before an abrupt stop still to come.
+    earlier_abrupt_state: Option<State>,
 }
+
+/// The plan's slots: at most five runs, a power of two so that `% RUNS` is a mask.
+const RUNS: usize = 8;
 
 /// The 16.16 velocity register as I32F32 bits.
 const fn velocity_bits(velocity: TargetVelocity) -> i64 {
@@ -96,22 +113,32 @@ impl VelocityContouring {
     pub fn with_position(parameters: VelocityParameters, position: I32F32) -> Result<Self, Error> {
         check_acceleration(parameters.acceleration)?;
         let mut generator = Self {
+            current: 0,
+            state: State::at_rest(position),
+            runs: [Replay::new(0, 0, 0); RUNS],
             target_velocity: velocity_bits(parameters.velocity),
             acceleration: rate_bits(parameters.acceleration),
             deceleration: 0,
             deceleration_register: parameters.deceleration,
-            state: State::at_rest(position),
-            abrupt_pending: false,
+            starts_abrupt: false,
             abrupt_state: None,
+            earlier_abrupt_state: None,
         };
         generator.resolve_deceleration();
+        generator.lay_out();
         Ok(generator)
     }
 
     /// Sets the target velocity; applies from the next cycle.
     pub fn set_velocity(&mut self, velocity: TargetVelocity) {
         self.target_velocity = velocity_bits(velocity);
-        self.abrupt_state = None;
+        // The abrupt stop shown is forgotten; one still to come is shown when it comes.
+        if self.abrupt_pending() {
+            self.earlier_abrupt_state = None;
+        } else {
+            self.abrupt_state = None;
+        }
+        self.lay_out();
     }
 
     /// Sets the acceleration; applies from the next cycle.
@@ -122,6 +149,7 @@ impl VelocityContouring {
         check_acceleration(acceleration)?;
         self.acceleration = rate_bits(acceleration);
         self.resolve_deceleration();
+        self.lay_out();
         Ok(())
     }
 
@@ -130,6 +158,7 @@ impl VelocityContouring {
     pub fn set_deceleration(&mut self, deceleration: Acceleration) {
         self.deceleration_register = deceleration;
         self.resolve_deceleration();
+        self.lay_out();
     }
 
     /// The present parameters, as registers (the velocity is zero after a stop).
@@ -144,14 +173,70 @@ impl VelocityContouring {
         }
     }
 
-    /// The cycle of an abrupt stop, off the per-cycle path: velocity zero, position held.
-    #[cold]
-    fn abrupt_stop(&mut self) -> State {
-        self.abrupt_pending = false;
-        let state = self.state.advanced(I32F32::ZERO);
-        self.state = state;
-        self.abrupt_state = Some(state);
-        state
+    /// An abrupt stop is still to come: the plan's first run, its cycle, is under way.
+    fn abrupt_pending(&self) -> bool {
+        self.starts_abrupt && self.current == 0
+    }
+
+    /// Lays the cycles out from the present state until the next command: an abrupt stop's
+    /// cycle still to come (velocity zero, position held), then the rule of SPEC §6 toward the
+    /// target in force — at most three runs of constant velocity change: toward zero at the
+    /// deceleration (the cycle that reaches or crosses zero included), away from zero at the
+    /// acceleration, the last cycle of each cut at the target; then the target for ever. Each
+    /// run's length is one division.
+    fn lay_out(&mut self) {
+        let pending = self.abrupt_pending();
+        let mut runs = [Replay::new(0, 0, 0); RUNS];
+        let mut count = 0;
+        let mut push = |next: i64, increment: i64, cycles: u64| {
+            // Empty runs are skipped; five at most (RUNS is eight).
+            if cycles > 0 {
+                if let Some(slot) = runs.get_mut(count) {
+                    *slot = Replay::new(next, increment, cycles);
+                    count += 1;
+                }
+            }
+        };
+        let velocity = if pending {
+            push(0, 0, 1);
+            0
+        } else {
+            self.state.velocity.to_bits()
+        };
+        // In the frame where the target is not below the velocity (mirrored by `sign`, the
+        // rule being symmetric): toward zero at D while the velocity is negative, then at A.
+        let sign = if self.target_velocity < velocity {
+            -1
+        } else {
+            1
+        };
+        let (velocity, target) = (velocity * sign, self.target_velocity * sign);
+        let mut push = |next: i64, increment: i64, cycles: u64| {
+            push(next * sign, increment * sign, cycles);
+        };
+        // Velocities below 2^47 in magnitude and rates ≥ 2^8: every count below 2^40, every
+        // sum below 2^48.
+        let mut from = velocity;
+        if from < 0 && from < target {
+            // Steps at D while the velocity before them is negative: ⌈−v / D⌉ of them reach
+            // or cross zero, fewer if the target comes first (⌈(target − v) / D⌉).
+            let deceleration = self.deceleration;
+            let steps = ceiling(-from, deceleration).min(ceiling(target - from, deceleration));
+            push(from + deceleration, deceleration, steps - 1);
+            let last = (from + deceleration * steps as i64).min(target);
+            push(last, 0, 1);
+            from = last;
+        }
+        if from < target {
+            let acceleration = self.acceleration;
+            let steps = ceiling(target - from, acceleration);
+            push(from + acceleration, acceleration, steps - 1);
+        }
+        // The target for ever (the first of its cycles lands on it).
+        push(target, 0, u64::MAX);
+        self.runs = runs;
+        self.current = 0;
+        self.starts_abrupt = pending;
     }
 
     fn resolve_deceleration(&mut self) {
@@ -191,57 +276,20 @@ impl VelocityContouring {
     /// # Ok::<(), profilegen::Error>(())
     /// ```
     pub fn predict(&self) -> Prediction {
-        // An abrupt stop still to come: its cycle (velocity zero, position held), then the rule
-        // from rest toward the target in force — zero, unless a velocity was given after the
-        // stop (found by the scripted tests, issue #17).
-        let velocity = if self.abrupt_pending {
-            0
-        } else {
-            self.state.velocity.to_bits()
-        };
-        // In the frame where the target is not below the velocity (mirrored by `sign`, the
-        // rule being symmetric): toward zero at D while the velocity is negative, then at A.
-        let sign = if self.target_velocity < velocity {
-            -1
-        } else {
-            1
-        };
-        let (velocity, target) = (velocity * sign, self.target_velocity * sign);
-        let turn = |v: i64| v * sign;
-        let mut pieces = [Piece::constant(0, 0); 6];
+        // The plan's runs from the one under way: the last, the target, for ever.
+        let mut pieces = [Piece::constant(0, 0); RUNS];
+        let first = self.current % RUNS;
         let mut count = 0;
-        if self.abrupt_pending {
-            pieces[0] = Piece::constant(0, 1);
-            count = 1;
-        }
-        let mut push = |next: i64, increment: i64, cycles: u64| {
-            if let Some(slot) = pieces.get_mut(count) {
-                *slot = Piece::run(turn(next), turn(increment), cycles);
-                count += 1;
+        for run in &self.runs[first..] {
+            pieces[count] = Piece::run(run.next(), run.increment(), run.cycles());
+            count += 1;
+            if run.cycles() >= 1 << 63 {
+                break;
             }
-        };
-        // Velocities below 2^47 in magnitude and rates ≥ 2^8: every count below 2^40, every
-        // sum below 2^48.
-        let mut from = velocity;
-        if from < 0 && from < target {
-            // Steps at D while the velocity before them is negative: ⌈−v / D⌉ of them reach
-            // or cross zero, fewer if the target comes first (⌈(target − v) / D⌉).
-            let deceleration = self.deceleration;
-            let steps = ceiling(-from, deceleration).min(ceiling(target - from, deceleration));
-            push(from + deceleration, deceleration, steps - 1);
-            let last = (from + deceleration * steps as i64).min(target);
-            push(last, 0, 1);
-            from = last;
         }
-        if from < target {
-            let acceleration = self.acceleration;
-            let steps = ceiling(target - from, acceleration);
-            push(from + acceleration, acceleration, steps - 1);
-        }
-        // The target for ever (the first of its cycles lands on it).
-        push(target, 0, 0);
         Prediction::new(self.state, &pieces[..count]).unwrap_or_else(|| {
-            // Six pieces never exceed the capacity (MAX_SEGMENTS): unreachable; at rest, for the type's sake.
+            // A plan of at most five runs never exceeds the capacity (MAX_SEGMENTS):
+            // unreachable; at rest, for the type's sake.
             Prediction::new(self.state, &[Piece::constant(0, 0)]).expect("one piece fits")
         })
     }
@@ -255,32 +303,16 @@ fn ceiling(a: i64, b: i64) -> u64 {
 impl ProfileGenerator for VelocityContouring {
     #[inline]
     fn step(&mut self) -> State {
-        if self.abrupt_pending {
-            return self.abrupt_stop();
+        // `% RUNS` is free (`current` < RUNS) and spares the bounds check.
+        let current = self.current % RUNS;
+        let (velocity, end) = self.runs[current].take();
+        match end {
+            End::No => {}
+            // The run's last cycle: the next run is already laid out.
+            End::Run => self.current = current + 1,
+            End::Lap => self.runs[current].lap(),
         }
-        let velocity = self.state.velocity.to_bits();
-        let target = self.target_velocity;
-        // Toward zero, the rate is the deceleration: the velocity moves against its own sign.
-        // That is the target being smaller with the same sign, or of the other sign (zero
-        // included), and it covers the cycle that reaches or crosses zero. So going up, D while
-        // the velocity is negative; going down, D while it is positive. |velocity| < 2^47 and
-        // rate < 2^39: no overflow, and never past the target.
-        let next = if target > velocity {
-            let rate = if velocity < 0 {
-                self.deceleration
-            } else {
-                self.acceleration
-            };
-            (velocity + rate).min(target)
-        } else {
-            let rate = if velocity > 0 {
-                self.deceleration
-            } else {
-                self.acceleration
-            };
-            (velocity - rate).max(target)
-        };
-        advance(&mut self.state, I32F32::from_bits(next))
+        advance(&mut self.state, I32F32::from_bits(velocity))
     }
 
     fn state(&self) -> State {
@@ -288,15 +320,20 @@ impl ProfileGenerator for VelocityContouring {
     }
 
     fn is_complete(&self) -> bool {
-        self.state.velocity == I32F32::ZERO && self.target_velocity == 0 && !self.abrupt_pending
+        self.state.velocity == I32F32::ZERO && self.target_velocity == 0 && !self.abrupt_pending()
     }
 
     fn stop(&mut self, kind: StopKind) {
         // Either stop zeroes the target velocity register: a restart needs a new velocity.
         self.target_velocity = 0;
-        if kind == StopKind::Abrupt {
-            self.abrupt_pending = true;
+        if kind == StopKind::Abrupt && !self.abrupt_pending() {
+            // Its cycle is the next: the state it leaves is known now.
+            self.earlier_abrupt_state = self.abrupt_state;
+            self.abrupt_state = Some(self.state.advanced(I32F32::ZERO));
+            self.starts_abrupt = true;
+            self.current = 0;
         }
+        self.lay_out();
     }
 
     fn limits(&self) -> Limits {
@@ -309,7 +346,188 @@ impl ProfileGenerator for VelocityContouring {
             max_slow_down: Some(I32F32::from_bits(self.deceleration)),
             max_acceleration: None,
             max_jerk: None,
-            exempt: self.abrupt_state == Some(self.state),
+            exempt: if self.abrupt_pending() {
+                self.earlier_abrupt_state == Some(self.state)
+            } else {
+                self.abrupt_state == Some(self.state)
+            },
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// The rule stepped cycle by cycle, as the generator did before its cycles were laid out:
+    /// the yardstick for the plan, commands included.
+    struct Decided {
+        target: i64,
+        acceleration: i64,
+        deceleration: i64,
+        deceleration_register: Acceleration,
+        state: State,
+        abrupt_pending: bool,
+        abrupt_state: Option<State>,
+    }
+
+    impl Decided {
+        fn new(parameters: VelocityParameters) -> Self {
+            let mut decided = Self {
+                target: velocity_bits(parameters.velocity),
+                acceleration: rate_bits(parameters.acceleration),
+                deceleration: 0,
+                deceleration_register: parameters.deceleration,
+                state: State::default(),
+                abrupt_pending: false,
+                abrupt_state: None,
+            };
+            decided.resolve();
+            decided
+        }
+
+        fn resolve(&mut self) {
+            self.deceleration = if self.deceleration_register.is_zero() {
+                self.acceleration
+            } else {
+                rate_bits(self.deceleration_register)
+            };
+        }
+
+        fn step(&mut self) -> State {
+            if self.abrupt_pending {
+                self.abrupt_pending = false;
+                self.state = self.state.advanced(I32F32::ZERO);
+                self.abrupt_state = Some(self.state);
+                return self.state;
+            }
+            let velocity = self.state.velocity.to_bits();
+            let next = if self.target > velocity {
+                let rate = if velocity < 0 {
+                    self.deceleration
+                } else {
+                    self.acceleration
+                };
+                (velocity + rate).min(self.target)
+            } else {
+                let rate = if velocity > 0 {
+                    self.deceleration
+                } else {
+                    self.acceleration
+                };
+                (velocity - rate).max(self.target)
+            };
+            advance(&mut self.state, I32F32::from_bits(next))
+        }
+
+        fn command(&mut self, command: Command) {
+            match command {
+                Command::Velocity(velocity) => {
+                    self.target = velocity_bits(velocity);
+                    self.abrupt_state = None;
+                }
+                Command::Acceleration(acceleration) => {
+                    self.acceleration = rate_bits(acceleration);
+                    self.resolve();
+                }
+                Command::Deceleration(deceleration) => {
+                    self.deceleration_register = deceleration;
+                    self.resolve();
+                }
+                Command::Stop(kind) => {
+                    self.target = 0;
+                    if kind == StopKind::Abrupt {
+                        self.abrupt_pending = true;
+                    }
+                }
+            }
+        }
+    }
+
+    #[derive(Debug, Clone, Copy)]
+    enum Command {
+        Velocity(TargetVelocity),
+        Acceleration(Acceleration),
+        Deceleration(Acceleration),
+        Stop(StopKind),
+    }
+
+    fn velocity() -> impl Strategy<Value = TargetVelocity> {
+        prop_oneof![
+            any::<i32>().prop_map(|bits| TargetVelocity::from_bits(bits).unwrap()),
+            (-2_000_000i32..2_000_000).prop_map(|bits| TargetVelocity::from_bits(bits).unwrap()),
+        ]
+    }
+
+    fn rate() -> impl Strategy<Value = Acceleration> {
+        prop_oneof![
+            (1u32..=u32::MAX)
+                .prop_map(|bits| Acceleration::from_bits(bits).unwrap_or(Acceleration::MAX)),
+            (1u32..100_000_000)
+                .prop_map(|bits| Acceleration::from_bits(bits).unwrap_or(Acceleration::MAX)),
+        ]
+    }
+
+    fn command() -> impl Strategy<Value = Command> {
+        prop_oneof![
+            3 => velocity().prop_map(Command::Velocity),
+            1 => rate().prop_map(Command::Acceleration),
+            1 => prop_oneof![Just(Acceleration::ZERO), rate()].prop_map(Command::Deceleration),
+            1 => Just(Command::Stop(StopKind::Smooth)),
+            2 => Just(Command::Stop(StopKind::Abrupt)),
+        ]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(2_000))]
+
+        /// Random commands at random cycles (several on one cycle too): every cycle's state,
+        /// completion and exemption the same as the rule's cycle by cycle, and the prediction's
+        /// next states the steps'.
+        #[test]
+        fn the_plan_is_the_rule_cycle_by_cycle(
+            start in (velocity(), rate(), prop_oneof![Just(Acceleration::ZERO), rate()]),
+            commands in prop::collection::vec((0u32..300, command()), 0..12),
+        ) {
+            let parameters = VelocityParameters {
+                velocity: start.0,
+                acceleration: start.1,
+                deceleration: start.2,
+            };
+            let mut axis = VelocityContouring::new(parameters).unwrap();
+            let mut decided = Decided::new(parameters);
+            for (gap, command) in commands.into_iter().chain([(500, Command::Stop(StopKind::Smooth))]) {
+                let future = axis.predict();
+                for cycle in 0..gap {
+                    let state = axis.step();
+                    prop_assert_eq!(state, decided.step(), "cycle {}", cycle);
+                    if u64::from(cycle) < 40 {
+                        prop_assert_eq!(future.state_at(u64::from(cycle) + 1), state);
+                    }
+                    let complete = decided.state.velocity == I32F32::ZERO
+                        && decided.target == 0
+                        && !decided.abrupt_pending;
+                    prop_assert_eq!(axis.is_complete(), complete);
+                    prop_assert_eq!(axis.limits().exempt, decided.abrupt_state == Some(decided.state));
+                }
+                match command {
+                    Command::Velocity(velocity) => axis.set_velocity(velocity),
+                    Command::Acceleration(acceleration) => {
+                        if axis.set_acceleration(acceleration).is_err() {
+                            continue;
+                        }
+                    }
+                    Command::Deceleration(deceleration) => axis.set_deceleration(deceleration),
+                    Command::Stop(kind) => axis.stop(kind),
+                }
+                decided.command(command);
+                prop_assert_eq!(axis.limits().exempt, decided.abrupt_state == Some(decided.state));
+                prop_assert_eq!(
+                    axis.is_complete(),
+                    decided.state.velocity == I32F32::ZERO && decided.target == 0 && !decided.abrupt_pending
+                );
+            }
         }
     }
 }

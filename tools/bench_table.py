@@ -51,6 +51,9 @@ def main() -> int:
         ("profilegen `VelocityContouring::step`", "cost per cycle/velocity"),
         ("profilegen `Trapezoidal::step`", "cost per cycle/trapezoidal"),
         ("profilegen `SCurve::step`", "cost per cycle/scurve"),
+        ("profilegen `Mcx514Trapezoidal::step` (reference 003's line)", "cost per cycle/mcx514"),
+        ("profilegen `Mcx514SCurve::step` (the same, JK = DJ = 650,000 pps/s²)", "cost per cycle/mcx514_scurve"),
+        ("profilegen `ElectronicGear::follow` (engaged at 1.5)", "cost per cycle/gearing"),
         ("stepgen `Stepgen::next` (per step, the peers' move)", "peers: per step/stepgen"),
         ("ramp-maker `Trapezoidal::next_delay` (per step, U32F32)", "peers: per step/ramp-maker"),
     ]

@@ -557,7 +557,7 @@ MANUAL_LINE = (-20_000, 30_000, -50_000)
 MANUAL_LINE_MCX514 = [(1000, 500, 20_000, 65_000, 65_000, mode, 45_000) for mode in (0, 1, 2)]
 # The same line driven by the crate's trapezoid: 20 steps/cycle (16.16), 0.065 steps/cycle² (8.24).
 MANUAL_LINE_TRAPEZOID = (20 << 16, round(0.065 * 2**24), 0, 0)
-LINE_PROFILES = ("mcx514", "trapezoid", "mcx514_scurve")
+LINE_PROFILES = ("mcx514", "trapezoid", "mcx514_scurve", "", "", "scurve")
 # The manual's line driven by the MCX514 S-curve: the same registers, JK = DJ = 650,000 pps/s²
 # (the rate reaches AC in 0.1 s).
 MANUAL_LINE_MCX514_SCURVE = [registers + (650_000, 650_000) for registers in MANUAL_LINE_MCX514]
@@ -746,9 +746,20 @@ def measure_mcx514_plans(probe: Probe, moves: int) -> list[int]:
     return plans
 
 
-def measure_lines(probe: Probe, moves: int) -> dict[str, list[int]]:
-    """Per-cycle counts of a 3-axis line (profile plus geometry), per driving profile."""
-    counts: dict[str, list[int]] = {profile: [] for profile in LINE_PROFILES}
+def random_scurve_lines(moves: list[tuple[int, int, int, int]], seed: int = 18) -> list[tuple[tuple[int, int, int], tuple]]:
+    """S-curve-driven lines: the given S-curve moves' registers, the distance (its size) as the
+    long axis."""
+    import random
+    rng = random.Random(seed)
+    return [(random_line(rng, abs(destination)), (velocity, acceleration, jerk))
+            for destination, velocity, acceleration, jerk in moves if destination != 0]
+
+
+def measure_lines(probe: Probe, moves: int, scurve_moves: list[tuple[int, int, int, int]]) -> dict[str, list[int]]:
+    """Per-cycle counts of a 3-axis line (profile plus geometry), per driving profile; the
+    crate's S-curve drives lines of `scurve_moves` (destination, velocity, acceleration, jerk
+    bits)."""
+    counts: dict[str, list[int]] = {profile: [] for profile in LINE_PROFILES if profile}
     for registers in MANUAL_LINE_MCX514:
         step_line(probe, "mcx514", MANUAL_LINE, registers, counts["mcx514"])
     step_line(probe, "trapezoid", MANUAL_LINE, MANUAL_LINE_TRAPEZOID, counts["trapezoid"])
@@ -760,6 +771,8 @@ def measure_lines(probe: Probe, moves: int) -> dict[str, list[int]]:
         step_line(probe, "mcx514_scurve", MANUAL_LINE, registers, counts["mcx514_scurve"])
     for finish, registers in random_mcx514_scurve_lines(moves):
         step_line(probe, "mcx514_scurve", finish, registers, counts["mcx514_scurve"])
+    for finish, registers in random_scurve_lines(scurve_moves):
+        step_line(probe, "scurve", finish, registers, counts["scurve"])
     return counts
 
 
@@ -1067,7 +1080,7 @@ def main() -> int:
     parser.add_argument("--line-moves", type=int, default=100,
                         help="random 3-axis lines stepped to the end, per driving profile (default %(default)s)")
     parser.add_argument("--line-budget", action="append", default=[], metavar="PROFILE=N",
-                        help="fail when a cycle of a 3-axis line driven by PROFILE (mcx514, trapezoid) "
+                        help="fail when a cycle of a 3-axis line driven by PROFILE (mcx514, trapezoid, mcx514_scurve, scurve) "
                              "executes more than N instructions (profile plus geometry); repeatable")
     parser.add_argument("--mcx514-plan-moves", type=int, default=500,
                         help="random MCX514 S-curve moves over the whole register ranges whose plan is "
@@ -1203,7 +1216,10 @@ def main() -> int:
         print(f"== a 3-axis linear interpolation, one call per cycle (LinearInterpolation::step: the "
               f"profile plus the geometry; the manual's line and {args.line_moves} random lines per profile)")
         lines_started = time.monotonic()
-        lines = measure_lines(probe, args.line_moves)
+        # The crate's S-curve drives the fixed move's and the stepped random moves' registers.
+        scurve_moves = [FIXED_STEP_MOVE] + [move for _, _, move, total in results[:args.line_moves * 4]
+                                            if total <= args.step_max_cycles][:args.line_moves]
+        lines = measure_lines(probe, args.line_moves, scurve_moves)
         for name, counts_ in lines.items():
             print(f"  {'3-axis line, ' + name:26} max {max(counts_):4}, mean {statistics.fmean(counts_):6.1f} "
                   f"instructions ({len(counts_)} cycles)")

@@ -27,9 +27,13 @@ printf '%-26s %8s %8s %10s\n' window cycles instr/cycle function
     velocity/*) function='<profilegen::velocity::VelocityContouring as profilegen::state::ProfileGenerator>::step' ;;
     trapezoidal/*) function='<profilegen::trapezoidal::Trapezoidal as profilegen::state::ProfileGenerator>::step' ;;
     scurve/*) function='<profilegen::scurve::SCurve as profilegen::state::ProfileGenerator>::step' ;;
+    mcx514/*) function='<profilegen::mcx514::trapezoidal::Mcx514Trapezoidal as profilegen::state::ProfileGenerator>::step' ;;
+    mcx514_scurve/*) function='<profilegen::mcx514::scurve::Mcx514SCurve as profilegen::state::ProfileGenerator>::step' ;;
+    gearing/*) function='profilegen::gearing::ElectronicGear::follow' ;;
   esac
   valgrind --tool=callgrind --callgrind-out-file="$out" --collect-atstart=no \
     --toggle-collect='step_instructions::measure' --toggle-collect='step_instructions::outputs' \
+    --toggle-collect='step_instructions::follow' \
     "$binary" "$name" >/dev/null 2>&1
   # Inclusive instructions of the function, over the window (collected only inside `measure`).
   total=$(callgrind_annotate --inclusive=yes "$out" 2>/dev/null \

@@ -3,9 +3,14 @@
 #![allow(dead_code)] // each user takes what it measures
 
 use profilegen::format::juno::{Acceleration, TargetVelocity};
+use profilegen::format::mc1451a::{GearRatio, TrapezoidalAcceleration};
 use profilegen::format::mc1451a::{Jerk, MaxVelocity, ScurveAcceleration};
+use profilegen::format::CycleTime;
+use profilegen::gearing::ElectronicGear;
+use profilegen::interpolation::Line;
 use profilegen::waveform::{MicrostepTable, Phases};
 use profilegen::{
+    DecelerationMode, Mcx514Parameters, Mcx514SCurve, Mcx514ScurveParameters, Mcx514Trapezoidal,
     ProfileGenerator, SCurve, ScurveParameters, Trapezoidal, TrapezoidalParameters,
     VelocityContouring, VelocityParameters,
 };
@@ -62,6 +67,65 @@ pub fn microstep_table() -> MicrostepTable {
         .unwrap()
         .with_current(20_000)
         .unwrap()
+}
+
+/// Reference 003's 3-axis line: finish (−20000, 30000, −50000), 50,000 steps.
+pub fn manual_line() -> Line<3> {
+    Line::from_pulses([-20_000, 30_000, -50_000]).unwrap()
+}
+
+/// Its MCX514 trapezoid at a 1 ms cycle: SV 500 pps, DV 20,000 pps, AC = DC = 65,000 pps/s
+/// (0.5 and 20 steps/cycle, 0.065 steps/cycle²), automatic deceleration.
+pub fn manual_line_mcx514() -> Mcx514Trapezoidal {
+    use profilegen::format::mcx514::{Acceleration, Deceleration, DriveSpeed, InitialSpeed};
+    Mcx514Trapezoidal::new(
+        Mcx514Parameters {
+            pulses: manual_line().steps(),
+            initial_speed: InitialSpeed::from_bits(500).unwrap(),
+            drive_speed: DriveSpeed::from_bits(20_000).unwrap(),
+            acceleration: Acceleration::from_bits(65_000).unwrap(),
+            deceleration: Deceleration::from_bits(65_000).unwrap(),
+            deceleration_mode: DecelerationMode::Automatic,
+        },
+        CycleTime::from_seconds(1e-3).unwrap(),
+    )
+    .unwrap()
+}
+
+/// The MCX514 S-curve on the same line: the same registers, JK = DJ = 650,000 pps/s² (the rate
+/// reaches AC in 0.1 s).
+pub fn manual_line_mcx514_scurve() -> Mcx514SCurve {
+    use profilegen::format::mcx514::{
+        Acceleration, Deceleration, DecelerationJerk, DriveSpeed, InitialSpeed, Jerk,
+    };
+    Mcx514SCurve::new(
+        Mcx514ScurveParameters {
+            trapezoid: Mcx514Parameters {
+                pulses: manual_line().steps(),
+                initial_speed: InitialSpeed::from_bits(500).unwrap(),
+                drive_speed: DriveSpeed::from_bits(20_000).unwrap(),
+                acceleration: Acceleration::from_bits(65_000).unwrap(),
+                deceleration: Deceleration::from_bits(65_000).unwrap(),
+                deceleration_mode: DecelerationMode::Automatic,
+            },
+            jerk: Jerk::from_bits(650_000).unwrap(),
+            deceleration_jerk: DecelerationJerk::from_bits(650_000).unwrap(),
+        },
+        CycleTime::from_seconds(1e-3).unwrap(),
+    )
+    .unwrap()
+}
+
+/// An MC1451A electronic gear following at 1.5 (the master's count times 3/2), decelerating at
+/// 0.25 counts/cycle² when stopped, from rest at 0.
+pub fn gear() -> ElectronicGear {
+    ElectronicGear::new(
+        GearRatio::from_num(1.5).unwrap(),
+        0,
+        fixed::types::I32F32::ZERO,
+        TrapezoidalAcceleration::from_num(ACCELERATION).unwrap(),
+    )
+    .unwrap()
 }
 
 /// A copy of `generator` advanced by `cycles`.

@@ -93,7 +93,7 @@ fn main() {
     let arguments: Vec<String> = std::env::args().skip(1).collect();
     // No argument: the list too (what `.ci/run` runs).
     let list = matches!(arguments.first().map(String::as_str), None | Some("--list"));
-    let windows: [(&str, Window); 9] = [
+    let windows: [(&str, Window); 16] = [
         (
             "velocity/ramp",
             Box::new(|l| run(common::velocity(), Phase::SpeedUp, l)),
@@ -133,6 +133,40 @@ fn main() {
             Box::new(|l| run(common::scurve(), Phase::SlowDown, l)),
         ),
         (
+            "mcx514/speed-up",
+            Box::new(|l| run(common::manual_line_mcx514(), Phase::SpeedUp, l)),
+        ),
+        (
+            "mcx514/cruise",
+            Box::new(|l| run(common::manual_line_mcx514(), Phase::Steady, l)),
+        ),
+        (
+            "mcx514/slow-down",
+            Box::new(|l| run(common::manual_line_mcx514(), Phase::SlowDown, l)),
+        ),
+        (
+            "mcx514_scurve/speed-up",
+            Box::new(|l| run(common::manual_line_mcx514_scurve(), Phase::SpeedUp, l)),
+        ),
+        (
+            "mcx514_scurve/cruise",
+            Box::new(|l| run(common::manual_line_mcx514_scurve(), Phase::Steady, l)),
+        ),
+        (
+            "mcx514_scurve/slow-down",
+            Box::new(|l| run(common::manual_line_mcx514_scurve(), Phase::SlowDown, l)),
+        ),
+        (
+            "gearing/follow",
+            Box::new(|l| {
+                if let Some(name) = l {
+                    println!("{name} 1 1000");
+                    return;
+                }
+                follow(&mut common::gear());
+            }),
+        ),
+        (
             "microstep/outputs",
             Box::new(|l| {
                 if let Some(name) = l {
@@ -163,5 +197,16 @@ fn main() {
 fn outputs(table: &profilegen::waveform::MicrostepTable) {
     for position in 0..1_000i32 {
         black_box(table.outputs(black_box(position * 7 - 3_000)));
+    }
+}
+
+/// 1,000 cycles of the gear behind a master that counts 100 a cycle (the gear engaged): its
+/// `follow` called through a function pointer, so it stays a function of its own to count.
+#[inline(never)]
+fn follow(gear: &mut profilegen::gearing::ElectronicGear) {
+    let follow: fn(&mut profilegen::gearing::ElectronicGear, i32) -> profilegen::State =
+        black_box(profilegen::gearing::ElectronicGear::follow);
+    for cycle in 1..=1_000i32 {
+        black_box(follow(gear, black_box(cycle * 100)));
     }
 }

@@ -24,7 +24,8 @@
 //!   cycles that follow can be counted too.
 //! - `probe_line_setup(words)`, `probe_line_step_<profile>()`, `probe_line_complete()`: a 3-axis
 //!   linear interpolation (SPEC §12.3) driven by one of the profiles (`mcx514` the MCX514
-//!   trapezoid, `trapezoid` the crate's `Trapezoidal`, `mcx514_scurve` the MCX514 S-curve), stepped one cycle per call through
+//!   trapezoid, `trapezoid` the crate's `Trapezoidal`, `mcx514_scurve` the MCX514 S-curve,
+//!   `scurve` the crate's `SCurve`), stepped one cycle per call through
 //!   `LinearInterpolation::step`: the measured cost is the profile plus the geometry (SPEC §16).
 //! - `probe_axis_step_<profile>()`, `probe_axis_complete()`: the MCX514 trapezoid or S-curve
 //!   alone (set up by `probe_line_setup` with profile 3 or 4), its cycle as a one-axis
@@ -445,8 +446,11 @@ static LINE_MCX514_SCURVE: Other<Stepped<LinearInterpolation<'static, Mcx514SCur
     Other(UnsafeCell::new(MaybeUninit::uninit()));
 static LINE_MCX514_SCURVE_PROFILE: Other<Mcx514SCurve> =
     Other(UnsafeCell::new(MaybeUninit::uninit()));
+static LINE_SCURVE: Other<Stepped<LinearInterpolation<'static, SCurve, 3>>> =
+    Other(UnsafeCell::new(MaybeUninit::uninit()));
+static LINE_SCURVE_PROFILE: Other<SCurve> = Other(UnsafeCell::new(MaybeUninit::uninit()));
 /// Which slot the last successful `probe_line_setup` filled: 0 MCX514, 1 trapezoid, 2 MCX514
-/// S-curve.
+/// S-curve, 5 the crate's S-curve.
 static LINE_KIND: AtomicU32 = AtomicU32::new(u32::MAX);
 /// The MCX514 trapezoid alone (the driving axis as a one-axis generator, no geometry), set up
 /// by `probe_line_setup` with profile 3.
@@ -465,6 +469,8 @@ static AXIS_KIND: AtomicU32 = AtomicU32::new(u32::MAX);
 ///   also `[11]` JK and `[12]` DJ (pps/s²);
 /// - trapezoid: `[4]` maximum velocity (16.16), `[5]` acceleration, `[6]` deceleration (8.24),
 ///   `[7]` starting velocity (16.16), raw bits; destination: the line's steps.
+/// - S-curve (profile 5, the crate's `SCurve`): `[4]` maximum velocity, `[5]` maximum
+///   acceleration, `[6]` jerk, raw bits (as `probe_plan_bits`); destination: the line's steps.
 ///
 /// Returns the line's steps, or `u64::MAX` when refused.
 ///
@@ -550,6 +556,24 @@ pub unsafe extern "C" fn probe_line_setup(words: *const u32) -> u64 {
             };
             LINE_KIND.store(2, Ordering::Relaxed);
         }
+        5 => {
+            let profile = || -> Result<SCurve, Error> {
+                SCurve::new(parameters(line.steps() as i32, word(4), word(5), word(6))?)
+            };
+            let Ok(profile) = profile() else {
+                return REFUSED;
+            };
+            // SAFETY: as for the MCX514 slots.
+            let profile = unsafe { (*LINE_SCURVE_PROFILE.0.get()).write(profile) };
+            // SAFETY: as above.
+            unsafe {
+                (*LINE_SCURVE.0.get()).write(Stepped {
+                    line: line.drive(profile),
+                    axes: [0; 3],
+                })
+            };
+            LINE_KIND.store(5, Ordering::Relaxed);
+        }
         _ => {
             let profile = || -> Result<Trapezoidal, Error> {
                 Trapezoidal::new(TrapezoidalParameters {
@@ -624,6 +648,17 @@ pub unsafe extern "C" fn probe_line_step_trapezoid() -> u32 {
     output(stepped.line.step(), &mut stepped.axes)
 }
 
+/// Advances the S-curve-driven line one cycle: `LinearInterpolation::step`.
+///
+/// # Safety
+/// `probe_line_setup` succeeded before with profile 5.
+#[no_mangle]
+pub unsafe extern "C" fn probe_line_step_scurve() -> u32 {
+    // SAFETY: initialized by probe_line_setup (the caller's contract); single-threaded.
+    let stepped = unsafe { (*LINE_SCURVE.0.get()).assume_init_mut() };
+    output(stepped.line.step(), &mut stepped.axes)
+}
+
 /// Advances the MCX514-S-curve-driven line one cycle: `LinearInterpolation::step`.
 ///
 /// # Safety
@@ -691,6 +726,10 @@ pub unsafe extern "C" fn probe_line_complete(out: *mut i32) -> u32 {
             }
             2 => {
                 let line = &(*LINE_MCX514_SCURVE.0.get()).assume_init_ref().line;
+                (line.is_complete(), line.state().axes)
+            }
+            5 => {
+                let line = &(*LINE_SCURVE.0.get()).assume_init_ref().line;
                 (line.is_complete(), line.state().axes)
             }
             _ => {
