@@ -32,7 +32,8 @@
 use fixed::types::I32F32;
 
 use crate::format::mc1451a::{GearRatio, TrapezoidalAcceleration};
-use crate::state::{Limits, ProfileGenerator, State, StopKind};
+use crate::replay::{Countdown, End};
+use crate::state::{advance, Limits, ProfileGenerator, State, StopKind};
 use crate::Error;
 
 /// Whether the gear follows its master.
@@ -44,6 +45,8 @@ enum Mode {
     Stopping,
     /// Abrupt stop on the next cycle.
     AbruptPending,
+    /// At rest, disengaged, the last cycle an abrupt stop's (exempt from the limits).
+    AbruptStopped,
     /// At rest, disengaged.
     Stopped,
 }
@@ -80,11 +83,17 @@ pub struct ElectronicGear {
     mode: Mode,
     /// The smooth stop's deceleration, I32F32 bits (the 16.16 register shifted left 16).
     deceleration: i64,
-    /// While stopping: the deceleration against the velocity's sign (added each cycle), worked
-    /// out when the stop is given, so a cycle does not decide the sign again.
+    /// Disengaged: what each cycle adds to the velocity (while stopping, the deceleration
+    /// against the velocity's sign; at rest, nothing), worked out when the stop is given, so a
+    /// cycle decides nothing.
     braking: i64,
-    /// The last cycle was an abrupt stop (exempt from the limits).
-    exempt: bool,
+    /// Disengaged: the cycles until the next comes to rest (the smooth stop's count, worked out
+    /// when it is given; one for an abrupt stop and the cycle after it; 2^64 − 1 at rest, so
+    /// that a cycle at rest takes the same path). Counted in 32 bits with the laps apart
+    /// ([`Countdown`]): a 32-bit core counts a 32-bit word down in two instructions where a
+    /// 64-bit one takes five, and a stop takes more than 2^32 cycles only from a velocity
+    /// wrapped far past the speed limit.
+    until_rest: Countdown,
 }
 
 impl ElectronicGear {
@@ -112,7 +121,7 @@ impl ElectronicGear {
             mode: Mode::Engaged,
             deceleration: i64::from(deceleration.to_bits()) << 16,
             braking: 0,
-            exempt: false,
+            until_rest: Countdown::new(u64::MAX),
         })
     }
 
@@ -137,6 +146,26 @@ impl ElectronicGear {
         }
     }
 
+    /// Works out the disengaged cycles for the mode in force: a smooth stop's braking and its
+    /// count, ⌈|v| / D⌉ cycles (the last the one that reaches or would pass zero: it rests);
+    /// an abrupt stop's one cycle; nothing at rest.
+    fn brake(&mut self) {
+        let velocity = self.state.velocity.to_bits();
+        (self.braking, self.until_rest) = match self.mode {
+            Mode::Stopping => (
+                if velocity > 0 {
+                    -self.deceleration
+                } else {
+                    self.deceleration
+                },
+                // D ≥ 2^16: one division, when the stop is given.
+                Countdown::new(velocity.unsigned_abs().div_ceil(self.deceleration as u64)),
+            ),
+            Mode::AbruptPending | Mode::AbruptStopped => (0, Countdown::new(1)),
+            Mode::Engaged | Mode::Stopped => (0, Countdown::new(u64::MAX)),
+        };
+    }
+
     /// A new smooth-stop deceleration.
     ///
     /// # Errors
@@ -149,7 +178,10 @@ impl ElectronicGear {
             });
         }
         self.deceleration = i64::from(deceleration.to_bits()) << 16;
-        self.braking = self.braking_now();
+        if self.mode == Mode::Stopping {
+            // From the present velocity at the new deceleration.
+            self.brake();
+        }
         Ok(())
     }
 
@@ -161,63 +193,65 @@ impl ElectronicGear {
     /// One cycle with the master's count `master` (it may wrap: each cycle's change is taken
     /// modulo 2³², so it must be below 2³¹ counts). Returns the follower's new state.
     pub fn follow(&mut self, master: i32) -> State {
-        // The change modulo 2^32, as a signed count: the wrap undone.
-        let change = i64::from(master.wrapping_sub(self.master));
-        self.master = master;
-        self.exempt = false;
-        let velocity = match self.mode {
-            Mode::Engaged => {
-                // The ratio times the change: a whole number of raw units, modulo 2^64 as the
-                // position register wraps (exact below the speed limit of the module docs).
-                self.ratio.wrapping_mul(change)
-            }
-            Mode::Stopping => {
-                let velocity = self.state.velocity.to_bits();
-                // Toward zero by the deceleration, never past it: on zero or past it (the sign
-                // turned), at rest. The two have opposite signs, so the sum does not overflow.
-                let next = velocity + self.braking;
-                if next == 0 || (next ^ velocity) < 0 {
-                    self.mode = Mode::Stopped;
+        // Engaged or not: one comparison (a jump table over the modes takes four instructions),
+        // and disengaged, one countdown: every decision was made when the stop was given.
+        let velocity = if self.mode == Mode::Engaged {
+            // The change modulo 2^32, as a signed count: the wrap undone.
+            let change = i64::from(master.wrapping_sub(self.master));
+            self.master = master;
+            // The ratio times the change: a whole number of raw units, modulo 2^64 as the
+            // position register wraps (exact below the speed limit of the module docs).
+            self.ratio.wrapping_mul(change)
+        } else {
+            self.master = master;
+            match self.until_rest.tick() {
+                End::Run => {
+                    self.rest();
                     0
-                } else {
-                    next
+                }
+                end => {
+                    if end == End::Lap {
+                        self.until_rest.lap();
+                    }
+                    // Toward zero, before the cycle that rests. (At rest: zero plus zero, for
+                    // 2^64 − 1 cycles before the count's end rests it again.)
+                    self.state.velocity.to_bits() + self.braking
                 }
             }
-            Mode::AbruptPending => {
-                self.mode = Mode::Stopped;
-                self.exempt = true;
-                0
-            }
-            Mode::Stopped => 0,
         };
-        self.state = self.state.advanced(I32F32::from_bits(velocity));
-        self.state
+        // The state built in place and returned from locals (a store and a copy back would
+        // cost a pass through memory).
+        advance(&mut self.state, I32F32::from_bits(velocity))
+    }
+
+    /// The cycle that comes to rest (a smooth stop's last, an abrupt stop's): from then on,
+    /// at rest — for one cycle marked as the abrupt stop's, whose drop is exempt. Out of line:
+    /// a stop's last cycle, taken once.
+    fn rest(&mut self) {
+        self.mode = if self.mode == Mode::AbruptPending {
+            Mode::AbruptStopped
+        } else {
+            Mode::Stopped
+        };
+        self.brake();
     }
 
     /// Whether the follower is at rest and disengaged.
     pub fn is_complete(&self) -> bool {
-        self.mode == Mode::Stopped && self.state.velocity == I32F32::ZERO
+        matches!(self.mode, Mode::Stopped | Mode::AbruptStopped)
+            && self.state.velocity == I32F32::ZERO
     }
 
     /// A stop (SPEC §14): abrupt, velocity zero on the next cycle; smooth, decelerate at the
     /// follower's deceleration. Either disengages the gear ([`Self::set_ratio`] re-engages).
     pub fn stop(&mut self, kind: StopKind) {
         self.mode = match (kind, self.mode) {
-            (_, Mode::Stopped) => Mode::Stopped,
+            (_, mode @ (Mode::Stopped | Mode::AbruptStopped)) => mode,
             (StopKind::Abrupt, _) | (StopKind::Smooth, Mode::AbruptPending) => Mode::AbruptPending,
             (StopKind::Smooth, _) if self.state.velocity == I32F32::ZERO => Mode::Stopped,
             (StopKind::Smooth, _) => Mode::Stopping,
         };
-        self.braking = self.braking_now();
-    }
-
-    /// The deceleration against the present velocity's sign.
-    fn braking_now(&self) -> i64 {
-        if self.state.velocity > I32F32::ZERO {
-            -self.deceleration
-        } else {
-            self.deceleration
-        }
+        self.brake();
     }
 
     /// The limits of the last cycle: none while engaged (the follower follows, whatever the
@@ -225,14 +259,16 @@ impl ElectronicGear {
     pub fn limits(&self) -> Limits {
         let deceleration = Some(I32F32::from_bits(self.deceleration));
         match self.mode {
-            Mode::Engaged | Mode::AbruptPending => Limits {
-                exempt: self.exempt,
-                ..Limits::default()
-            },
+            Mode::Engaged | Mode::AbruptPending => Limits::default(),
             Mode::Stopping | Mode::Stopped => Limits {
                 max_speed_up: Some(I32F32::ZERO),
-                max_slow_down: if self.exempt { None } else { deceleration },
-                exempt: self.exempt,
+                max_slow_down: deceleration,
+                ..Limits::default()
+            },
+            // The drop to rest: exempt from every limit.
+            Mode::AbruptStopped => Limits {
+                max_speed_up: Some(I32F32::ZERO),
+                exempt: true,
                 ..Limits::default()
             },
         }
@@ -389,5 +425,157 @@ impl<I: Iterator<Item = i32>> ProfileGenerator for EncoderFollower<I> {
 
     fn limits(&self) -> Limits {
         self.gear.limits()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// The gear as it decided every cycle before its stops were worked out at the command: the
+    /// yardstick, commands included.
+    struct Decided {
+        state: State,
+        ratio: i64,
+        master: i32,
+        mode: Mode,
+        deceleration: i64,
+        braking: i64,
+        exempt: bool,
+    }
+
+    impl Decided {
+        fn braking_now(&self) -> i64 {
+            if self.state.velocity > I32F32::ZERO {
+                -self.deceleration
+            } else {
+                self.deceleration
+            }
+        }
+
+        fn follow(&mut self, master: i32) -> State {
+            let change = i64::from(master.wrapping_sub(self.master));
+            self.master = master;
+            self.exempt = false;
+            let velocity = match self.mode {
+                Mode::Engaged => self.ratio.wrapping_mul(change),
+                Mode::Stopping => {
+                    let velocity = self.state.velocity.to_bits();
+                    let next = velocity + self.braking;
+                    if next == 0 || (next ^ velocity) < 0 {
+                        self.mode = Mode::Stopped;
+                        0
+                    } else {
+                        next
+                    }
+                }
+                Mode::AbruptPending => {
+                    self.mode = Mode::Stopped;
+                    self.exempt = true;
+                    0
+                }
+                Mode::Stopped | Mode::AbruptStopped => 0,
+            };
+            self.state = self.state.advanced(I32F32::from_bits(velocity));
+            self.state
+        }
+
+        fn command(&mut self, command: Command) {
+            match command {
+                Command::Ratio(ratio) => {
+                    self.ratio = i64::from(ratio.to_bits()) << 16;
+                    if self.mode != Mode::AbruptPending {
+                        self.mode = Mode::Engaged;
+                    }
+                }
+                Command::Deceleration(deceleration) => {
+                    self.deceleration = i64::from(deceleration.to_bits()) << 16;
+                    self.braking = self.braking_now();
+                }
+                Command::Stop(kind) => {
+                    self.mode = match (kind, self.mode) {
+                        (_, Mode::Stopped) => Mode::Stopped,
+                        (StopKind::Abrupt, _) | (StopKind::Smooth, Mode::AbruptPending) => {
+                            Mode::AbruptPending
+                        }
+                        (StopKind::Smooth, _) if self.state.velocity == I32F32::ZERO => {
+                            Mode::Stopped
+                        }
+                        (StopKind::Smooth, _) => Mode::Stopping,
+                    };
+                    self.braking = self.braking_now();
+                }
+            }
+        }
+    }
+
+    #[derive(Debug, Clone, Copy)]
+    enum Command {
+        Ratio(GearRatio),
+        Deceleration(TrapezoidalAcceleration),
+        Stop(StopKind),
+    }
+
+    fn ratio() -> impl Strategy<Value = GearRatio> {
+        (-(1i32 << 30)..(1 << 30)).prop_map(|bits| GearRatio::from_bits(bits).unwrap())
+    }
+
+    fn deceleration() -> impl Strategy<Value = TrapezoidalAcceleration> {
+        prop_oneof![1u32..(1 << 30), 1u32..1_000_000]
+            .prop_map(|bits| TrapezoidalAcceleration::from_bits(bits).unwrap())
+    }
+
+    fn command() -> impl Strategy<Value = Command> {
+        prop_oneof![
+            2 => ratio().prop_map(Command::Ratio),
+            1 => deceleration().prop_map(Command::Deceleration),
+            2 => Just(Command::Stop(StopKind::Smooth)),
+            1 => Just(Command::Stop(StopKind::Abrupt)),
+        ]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(2_000))]
+
+        /// Random masters (steady and jumping counts) and commands at random cycles: every
+        /// cycle's state and completion the same as the gear that decided every cycle, and its
+        /// exemption after every cycle.
+        #[test]
+        fn the_stops_worked_out_are_the_rule_cycle_by_cycle(
+            start in (ratio(), deceleration(), any::<i32>()),
+            speed in prop_oneof![-2_000i32..2_000, any::<i32>().prop_map(|s| s >> 8)],
+            commands in prop::collection::vec((0u32..200, command()), 0..10),
+        ) {
+            let (ratio, deceleration, master) = start;
+            let mut gear = ElectronicGear::new(ratio, master, I32F32::ZERO, deceleration).unwrap();
+            let mut decided = Decided {
+                state: State::default(),
+                ratio: i64::from(ratio.to_bits()) << 16,
+                master,
+                mode: Mode::Engaged,
+                deceleration: i64::from(deceleration.to_bits()) << 16,
+                braking: 0,
+                exempt: false,
+            };
+            let mut count = master;
+            for (gap, command) in commands.into_iter().chain([(300, Command::Stop(StopKind::Smooth))]) {
+                for cycle in 0..gap {
+                    count = count.wrapping_add(speed);
+                    prop_assert_eq!(gear.follow(count), decided.follow(count), "cycle {}", cycle);
+                    prop_assert_eq!(gear.limits().exempt, decided.exempt);
+                    prop_assert_eq!(
+                        gear.is_complete(),
+                        decided.mode == Mode::Stopped && decided.state.velocity == I32F32::ZERO
+                    );
+                }
+                match command {
+                    Command::Ratio(ratio) => gear.set_ratio(ratio),
+                    Command::Deceleration(deceleration) => gear.set_deceleration(deceleration).unwrap(),
+                    Command::Stop(kind) => gear.stop(kind),
+                }
+                decided.command(command);
+            }
+        }
     }
 }

@@ -46,7 +46,7 @@ impl Countdown {
 
     /// One cycle taken: what the count reaching zero means.
     #[inline(always)]
-    fn tick(&mut self) -> End {
+    pub(crate) fn tick(&mut self) -> End {
         self.count = self.count.wrapping_sub(1);
         if self.count != 0 {
             End::No
@@ -60,7 +60,7 @@ impl Countdown {
     /// After [`End::Lap`] on a run that is not the slow path's: 2^32 cycles more (the count
     /// wraps on the next).
     #[inline(always)]
-    fn lap(&mut self) {
+    pub(crate) fn lap(&mut self) {
         self.laps -= 1;
     }
 }

@@ -93,7 +93,7 @@ fn main() {
     let arguments: Vec<String> = std::env::args().skip(1).collect();
     // No argument: the list too (what `.ci/run` runs).
     let list = matches!(arguments.first().map(String::as_str), None | Some("--list"));
-    let windows: [(&str, Window); 16] = [
+    let windows: [(&str, Window); 17] = [
         (
             "velocity/ramp",
             Box::new(|l| run(common::velocity(), Phase::SpeedUp, l)),
@@ -163,7 +163,24 @@ fn main() {
                     println!("{name} 1 1000");
                     return;
                 }
-                follow(&mut common::gear());
+                follow(&mut common::gear(), 0);
+            }),
+        ),
+        (
+            "gearing/stopping",
+            Box::new(|l| {
+                if let Some(name) = l {
+                    println!("{name} 1 1000");
+                    return;
+                }
+                // Engaged at 150 counts/cycle, then a smooth stop: it slows down at 0.25
+                // counts/cycle² for 600 cycles and rests for the rest of the window.
+                let mut gear = common::gear();
+                for cycle in 1..=100 {
+                    gear.follow(cycle * 100);
+                }
+                gear.stop(profilegen::StopKind::Smooth);
+                follow(&mut gear, 100 * 100);
             }),
         ),
         (
@@ -200,13 +217,13 @@ fn outputs(table: &profilegen::waveform::MicrostepTable) {
     }
 }
 
-/// 1,000 cycles of the gear behind a master that counts 100 a cycle (the gear engaged): its
-/// `follow` called through a function pointer, so it stays a function of its own to count.
+/// 1,000 cycles of the gear behind a master that counts 100 a cycle from `master`: its `follow`
+/// called through a function pointer, so it stays a function of its own to count.
 #[inline(never)]
-fn follow(gear: &mut profilegen::gearing::ElectronicGear) {
+fn follow(gear: &mut profilegen::gearing::ElectronicGear, master: i32) {
     let follow: fn(&mut profilegen::gearing::ElectronicGear, i32) -> profilegen::State =
         black_box(profilegen::gearing::ElectronicGear::follow);
     for cycle in 1..=1_000i32 {
-        black_box(follow(gear, black_box(cycle * 100)));
+        black_box(follow(gear, black_box(master + cycle * 100)));
     }
 }
