@@ -133,7 +133,7 @@ impl Layout {
                 }
                 let first_rate = rule.rate;
                 motion = motion.run(jerk, cycles);
-                rule.rate = motion.acceleration.abs();
+                rule.rate = motion.acceleration.saturating_abs();
                 // Σ_{m<k} (r₀ + m·J) added, Σ_{m≤k} (r₀ − m·J) taken off (both exact: the tails
                 // are in range; the products wrap where they pass i64).
                 let k = cycles as i64;
@@ -208,7 +208,7 @@ impl Layout {
                 Phase::Decelerating => &profile.slow_down,
                 _ => return rule,
             };
-            rule.rate = motion.acceleration.abs();
+            rule.rate = motion.acceleration.saturating_abs();
             rule.tail = Ramp::tail(rule.rate, ramp.jerk);
         }
         rule
