@@ -30,13 +30,13 @@
 //! Planning takes a bounded number of integer operations, the same on every target (no floating
 //! point): at most eight shapes, each solved in closed form, a fixed number of notch-pair
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
-//! checked). Measured (see the README for the commands): 9,749 Cortex-M4 instructions median,
-//! 18,790 at worst over the first 1,000 random moves (22,987 over 5,000: moves of one to a few
-//! raw units of jerk, whose few units leave the whole remainder to the notch pairs); on the x86
+//! checked). Measured (see the README for the commands): 10,177 Cortex-M4 instructions median,
+//! 17,297 at worst over the first 1,000 random moves (20,794 over 5,000: a move of 14 cycles
+//! with a huge jerk, whose first candidates fail); on the x86
 //! development machine a few hundred nanoseconds median, under about 2 µs at worst. Moves the
 //! shapes near the optimum cannot finish (mostly from fractional positions with a jerk of a few
 //! raw units) try up to 24 more pairs of ramps around it first, which costs more. A step is at
-//! most 40 Cortex-M4 instructions.
+//! most 33 Cortex-M4 instructions (36 on the cycles after an abrupt stop), 18 on x86.
 
 mod predict;
 mod remainder;
@@ -50,7 +50,7 @@ use fixed::types::I32F32;
 use crate::format::mc1451a::{Destination, Jerk, MaxVelocity, ScurveAcceleration};
 use crate::state::{Limits, ProfileGenerator, State, StopKind};
 use crate::Error;
-use schedule::{Limits64, Schedule, ABRUPT_REST, PENDING, SENTINEL};
+use schedule::{Limits64, Run, Schedule, ABRUPT_REST, AFTER_ABRUPT_REST, LAPS, PENDING, SENTINEL};
 
 /// The parameters of an S-curve move, in MC1451A register formats.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -96,25 +96,6 @@ enum Motion {
     AbruptPending,
 }
 
-/// A jerk change kept apart from the schedule, which the fast path takes at index [`PENDING`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct Pending {
-    /// The jerk it sets, I32F32 bits, direction included.
-    jerk: i64,
-    /// The cycles it holds.
-    hold: u64,
-    /// The index of the change after it.
-    next: usize,
-}
-
-impl Pending {
-    const NONE: Self = Self {
-        jerk: 0,
-        hold: 0,
-        next: SENTINEL,
-    };
-}
-
 /// The MC1451A S-curve point-to-point generator.
 ///
 /// ```
@@ -141,27 +122,25 @@ impl Pending {
 pub struct SCurve {
     /// The state after the last step: its acceleration and velocity are the integrators.
     state: State,
-    /// The jerk the next step adds to the acceleration, I32F32 bits, direction included.
-    jerk: i64,
-    /// Steps until the next event: a jerk change, the end of the move, a stop's next cycle.
-    countdown: u64,
-    /// Index of the next jerk change in the schedule, replayed on the fast path of
-    /// [`ProfileGenerator::step`] (a smooth stop's changes, after the plan's, too); past it,
-    /// [`PENDING`] (the change kept in `pending`) and [`ABRUPT_REST`]; off the plan (rest, a
-    /// stop decided per cycle) the schedule's sentinel, which sends every event to the slow
-    /// path. The move is complete once its end marker is replayed.
-    next_change: usize,
+    /// The run under way: the jerk the next step adds to the acceleration (I32F32 bits,
+    /// direction included), the steps until the next event (a jerk change, the end of the move,
+    /// a stop's next cycle), and where the replay goes then — the schedule's next run, replayed
+    /// on the fast path of [`ProfileGenerator::step`] (a smooth stop's runs, after the plan's,
+    /// too); past the schedule, [`PENDING`] (the change kept in `pending`), [`ABRUPT_REST`],
+    /// a run's laps; off the plan (rest, a stop decided per cycle) the sentinel, which sends
+    /// every event to the slow path. The move has arrived once its end marker is replayed.
+    run: Run,
     /// The phase, as the last command or slow-path event left it (an abrupt stop's cycles do
     /// not update it: [`Self::motion`] reads it with them).
     motion: Motion,
     /// +1 or −1: the direction of the move.
     direction: i64,
     /// A change the fast path takes at index [`PENDING`], past the schedule: an abrupt stop's
-    /// second cycle, whose jerk levels the drop's acceleration off (the velocity dropped, up to
-    /// 2^48 raw, more than the schedule's 32-bit jerks hold), then [`ABRUPT_REST`]; or, after the
+    /// second cycle, whose jerk levels the drop's acceleration off (the plan's changes stay as
+    /// they are, for [`Self::plan`]), then [`ABRUPT_REST`]; or, after the
     /// first step of a move started right after an abrupt stop (whose jerk was corrected for the
     /// drop's acceleration), the plan's replay from its second cycle.
-    pending: Pending,
+    pending: Run,
     /// After a stop the velocity register reads zero (SPEC §9).
     velocity_cleared: bool,
     parameters: ScurveParameters,
@@ -285,12 +264,10 @@ impl SCurve {
         let limits = check(&parameters)?;
         let mut generator = Self {
             state: State::at_rest(position),
-            jerk: 0,
-            countdown: u64::MAX,
-            next_change: SENTINEL,
+            run: Run::END,
             motion: Motion::Rest,
             direction: 1,
-            pending: Pending::NONE,
+            pending: Run::END,
             velocity_cleared: false,
             parameters,
             limits,
@@ -453,14 +430,14 @@ impl SCurve {
     /// drop to zero velocity) has been stepped.
     fn motion(&self) -> Motion {
         match self.motion {
-            Motion::AbruptPending if self.next_change != PENDING => Motion::Rest,
+            Motion::AbruptPending if self.run.next != PENDING => Motion::Rest,
             motion => motion,
         }
     }
 
     /// The last step was an abrupt stop's drop, exempt from the limits (SPEC §9).
     fn exempt(&self) -> bool {
-        self.motion == Motion::AbruptPending && self.next_change == ABRUPT_REST
+        self.motion == Motion::AbruptPending && self.run.next == ABRUPT_REST
     }
 
     /// Starts the planned move (or rests, if it is empty) on the next step.
@@ -472,30 +449,18 @@ impl SCurve {
         self.motion = Motion::Planned;
         // The first change is on cycle 0: it is the first step's jerk.
         let first = self.schedule.run(0);
-        self.jerk = first.jerk;
-        self.countdown = first.hold;
-        self.next_change = 1;
+        self.run = first;
         // Right after an abrupt stop the last acceleration is the drop: the first step of the
         // move starts from zero, so its jerk is corrected for that one cycle, and the replay
         // goes on from the plan's second cycle (a change past the schedule, `PENDING`).
         let acceleration = self.state.acceleration.to_bits();
         if acceleration != 0 {
-            self.jerk -= acceleration;
-            self.countdown = 1;
-            self.next_change = PENDING;
-            self.pending = if first.hold > 1 {
-                Pending {
-                    jerk: first.jerk,
-                    hold: first.hold - 1,
-                    next: 1,
-                }
+            self.run = Run::new(first.jerk - acceleration, 1, PENDING);
+            let cycles = first.cycles();
+            self.pending = if cycles > 1 {
+                Run::new(first.jerk, cycles - 1, first.after())
             } else {
-                let second = self.schedule.run(1);
-                Pending {
-                    jerk: second.jerk,
-                    hold: second.hold,
-                    next: 2,
-                }
+                self.schedule.run(first.after())
             };
         }
     }
@@ -504,7 +469,7 @@ impl SCurve {
     /// changes has come to rest (it passes no other state of velocity and acceleration zero).
     fn arrived(&self) -> bool {
         match self.motion {
-            Motion::Planned => self.next_change == self.schedule.len(),
+            Motion::Planned => self.run.next == SENTINEL,
             Motion::Stopping => self.state.velocity == 0 && self.state.acceleration == 0,
             _ => false,
         }
@@ -514,6 +479,16 @@ impl SCurve {
     #[cold]
     #[inline(never)]
     fn event(&mut self) {
+        if self.run.next >= LAPS {
+            // A long run's next lap of 2^32 cycles (it has laps left: it came here), after
+            // which, if it was the last, the replay goes on.
+            self.run.laps -= 1;
+            self.run.count = 0;
+            if self.run.laps == 0 {
+                self.run.next -= LAPS;
+            }
+            return;
+        }
         let (acceleration, velocity) = (
             self.state.acceleration.to_bits(),
             self.state.velocity.to_bits(),
@@ -552,10 +527,7 @@ impl SCurve {
             self.schedule.plan = self.plan();
         }
         let first = self.schedule.seal_at_end(&changes[..count], self.direction);
-        let change = self.schedule.run(first);
-        self.jerk = change.jerk;
-        self.countdown = change.hold;
-        self.next_change = first + 1;
+        self.run = self.schedule.run(first);
     }
 
     /// The next cycle of a smooth stop: the jerk that brings the acceleration to the stop's next
@@ -567,16 +539,15 @@ impl SCurve {
             self.direction * self.state.velocity.to_bits(),
             self.limits,
         );
-        self.jerk = self.direction * next - acceleration;
-        self.countdown = 1;
+        self.run = Run::new(self.direction * next - acceleration, 1, SENTINEL);
     }
 
     /// At rest: the next step levels the acceleration off if it is not zero yet.
     fn rest(&mut self) {
         self.motion = Motion::Rest;
-        self.next_change = SENTINEL;
-        self.jerk = -self.state.acceleration.to_bits();
-        self.countdown = if self.jerk == 0 { u64::MAX } else { 1 };
+        // Levelled off, the slow path comes back every 2^32 cycles (and rests again).
+        let jerk = -self.state.acceleration.to_bits();
+        self.run = Run::new(jerk, if jerk == 0 { 1 << 32 } else { 1 }, SENTINEL);
     }
 }
 
@@ -586,7 +557,7 @@ impl ProfileGenerator for SCurve {
         // The identities of SPEC §5 by construction: the acceleration is the velocity change,
         // the position advances by the new velocity (wrapping like the chip's register). The
         // values stay within the limits, so the additions cannot overflow.
-        let acceleration = self.state.acceleration.to_bits() + self.jerk;
+        let acceleration = self.state.acceleration.to_bits() + self.run.jerk;
         let velocity = self.state.velocity.to_bits() + acceleration;
         let state = State {
             position: I32F32::from_bits(self.state.position.to_bits().wrapping_add(velocity)),
@@ -594,31 +565,20 @@ impl ProfileGenerator for SCurve {
             acceleration: I32F32::from_bits(acceleration),
         };
         self.state = state;
-        self.countdown -= 1;
-        if self.countdown == 0 {
-            // The next jerk change of the plan, replayed: the jerk it sets and the cycles it
-            // holds. The end marker, the last, sets the jerk to zero and holds for ever; the
-            // sentinel, which holds no cycle, sends the event to the slow path.
-            let next = self.next_change;
-            match self.schedule.change(next) {
-                Some(change) => {
-                    self.jerk = change.jerk;
-                    self.countdown = change.hold;
-                    self.next_change = next + 1;
-                }
-                // Past the schedule: the change kept apart (an abrupt stop's level-off, whose
-                // jerk is too wide for the schedule's arrays; the replay after a move's corrected
+        self.run.count = self.run.count.wrapping_sub(1);
+        if self.run.count == 0 {
+            // The next run of the plan, replayed: copied whole, its jerk, its count and where
+            // it goes next. The end marker, the last, sets the jerk to zero; the slow path's
+            // indices, past the schedule, send the event there.
+            let next = self.run.next;
+            match self.schedule.run_at(next) {
+                Some(run) => self.run = *run,
+                // Past the schedule: the change kept apart (an abrupt stop's level-off, which
+                // leaves the plan's changes as they are; the replay after a move's corrected
                 // first step), then an abrupt stop's rest.
-                None if next == PENDING => {
-                    let Pending { jerk, hold, next } = self.pending;
-                    self.jerk = jerk;
-                    self.countdown = hold;
-                    self.next_change = next;
-                }
+                None if next == PENDING => self.run = self.pending,
                 None if next == ABRUPT_REST => {
-                    self.jerk = 0;
-                    self.countdown = u64::MAX;
-                    self.next_change = ABRUPT_REST + 1;
+                    self.run = Run::new(0, 1 << 32, AFTER_ABRUPT_REST);
                 }
                 None => self.event(),
             }
@@ -650,7 +610,7 @@ impl ProfileGenerator for SCurve {
         );
         if self.arrived() {
             self.motion = Motion::Rest;
-            self.next_change = SENTINEL;
+            self.run.next = SENTINEL;
         }
         match (kind, self.motion()) {
             (_, Motion::Rest) | (StopKind::Smooth, Motion::Stopping | Motion::AbruptPending) => {}
@@ -658,7 +618,7 @@ impl ProfileGenerator for SCurve {
             (StopKind::Smooth, Motion::Planned) if velocity == 0 => self.rest(),
             (StopKind::Smooth, Motion::Planned) => {
                 self.motion = Motion::Stopping;
-                self.next_change = SENTINEL;
+                self.run.next = SENTINEL;
                 self.lay_out_stop();
             }
             (StopKind::Abrupt, _) => {
@@ -666,14 +626,8 @@ impl ProfileGenerator for SCurve {
                 // levels it off (a jerk of the velocity dropped), then rest: replayed by the
                 // fast path of `step`.
                 self.motion = Motion::AbruptPending;
-                self.jerk = -velocity - acceleration;
-                self.countdown = 1;
-                self.next_change = PENDING;
-                self.pending = Pending {
-                    jerk: velocity,
-                    hold: 1,
-                    next: ABRUPT_REST,
-                };
+                self.run = Run::new(-velocity - acceleration, 1, PENDING);
+                self.pending = Run::new(velocity, 1, ABRUPT_REST);
             }
         }
     }
@@ -770,6 +724,91 @@ mod tests {
             prop_assert!(steepest <= i128::from(jerk));
             let holds: u64 = axis.schedule.runs().map(|(hold, _)| hold).sum();
             prop_assert_eq!(holds, axis.plan().total, "the replay takes exactly the plan's cycles");
+        }
+    }
+
+    /// A run's count and laps hold its length, from one cycle to the longest a move has
+    /// (below 2^48), and a run that needs laps goes to the slow path after its count.
+    #[test]
+    fn runs_hold_their_lengths_in_count_and_laps() {
+        for cycles in [
+            1,
+            2,
+            (1 << 31) - 1,
+            (1 << 32) - 1,
+            1 << 32,
+            (1 << 32) + 1,
+            (1 << 33) + 5,
+            (1 << 48) - 1,
+        ] {
+            let run = Run::new(-7, cycles, 3);
+            assert_eq!(run.cycles(), cycles);
+            assert_eq!(run.after(), 3);
+            assert_eq!(run.next >= LAPS, cycles > 1 << 32, "{cycles}");
+            assert_eq!(run.change().hold, cycles);
+        }
+        assert_eq!(
+            Run::END.change().hold,
+            u64::MAX,
+            "an end marker holds for ever"
+        );
+    }
+
+    /// The longest runs there are: a cruise at the least velocity (2^-16 counts/cycle) across
+    /// the whole destination range, about 2^47 cycles. Stepped across the ends of its count,
+    /// of a lap in the middle and of its last lap (put just before each by the prediction's
+    /// closed forms, which read the runs' lengths, not the stepping), every state is the
+    /// prediction's, and the cruise ends where the plan says.
+    #[test]
+    fn long_runs_count_their_laps() {
+        let parameters = ScurveParameters {
+            destination: (1 << 30) - 1,
+            max_velocity: MaxVelocity::from_bits(1).unwrap(),
+            max_acceleration: ScurveAcceleration::from_num(0.01).unwrap(),
+            jerk: Jerk::from_num(0.001).unwrap(),
+        };
+        let start = SCurve::with_position(parameters, I32F32::from_num(-(1 << 30))).unwrap();
+        let prediction = start.predict().unwrap();
+        let (mut from, mut long) = (0u64, None);
+        for (index, (cycles, _)) in start.schedule.runs().enumerate() {
+            if cycles > 3 << 32 {
+                long = Some((index as u16, from, cycles));
+            }
+            from += cycles;
+        }
+        let (index, first, cycles) = long.expect("a cruise of more than 2^33 cycles");
+        let laps = (cycles - 1) >> 32;
+        let count = cycles - (laps << 32);
+        for (boundary, laps_left) in [
+            (first + count, laps - 1),
+            (first + count + (2 << 32), laps - 3),
+            (first + cycles, 0),
+        ] {
+            let mut axis = start.clone();
+            let at = boundary - 2;
+            axis.state = prediction.state_at(at);
+            axis.run = Run::new(
+                start.schedule.run(index).jerk,
+                first + cycles - at,
+                index + 1,
+            );
+            for cycle in at + 1..=boundary + 2 {
+                assert_eq!(axis.step(), prediction.state_at(cycle), "cycle {cycle}");
+                if cycle < first + cycles {
+                    assert_eq!(
+                        axis.run.cycles(),
+                        first + cycles - cycle,
+                        "left after {cycle}"
+                    );
+                }
+                if cycle == boundary && laps_left > 0 {
+                    assert_eq!(axis.run.laps, laps_left as u16, "laps left after {cycle}");
+                    assert_eq!(axis.run.next, LAPS + index + 1);
+                }
+            }
+            if laps_left == 0 {
+                assert!(axis.run.next < LAPS, "past the cruise, its laps counted");
+            }
         }
     }
 }

@@ -56,23 +56,18 @@ impl SCurve {
                 push(Piece::constant(velocity, 0));
             }
             // A smooth stop decided cycle by cycle.
-            Motion::Stopping if self.next_change == SENTINEL => return None,
+            Motion::Stopping if self.run.next == SENTINEL => return None,
             Motion::Planned | Motion::Stopping => {
                 // The run under way: the jerk for `countdown` more steps from the present
                 // acceleration — or, on the first step of a move started right after an abrupt
                 // stop, the plan from its start (that step's corrected jerk makes its
                 // acceleration the first run's jerk, as from acceleration zero).
-                let (acceleration, jerk, countdown, next) = if self.next_change == PENDING {
-                    let first = self.schedule.run(0);
-                    (0, first.jerk, first.hold, 1)
+                let (acceleration, run) = if self.run.next == PENDING {
+                    (0, self.schedule.run(0))
                 } else {
-                    (
-                        state.acceleration.to_bits(),
-                        self.jerk,
-                        self.countdown,
-                        self.next_change,
-                    )
+                    (state.acceleration.to_bits(), self.run)
                 };
+                let (jerk, countdown, next) = (run.jerk, run.cycles(), run.after());
                 push(Piece {
                     cycles: countdown,
                     c0: velocity,
@@ -88,7 +83,7 @@ impl SCurve {
                     self.schedule.len()
                 };
                 for index in next..end {
-                    let change = self.schedule.run(index);
+                    let change = self.schedule.change(index);
                     push(Piece::jerk_run(change.jerk, change.hold));
                 }
             }

@@ -8,13 +8,123 @@ use super::shape::{corners, MainMove};
 use super::ScurvePlan;
 
 /// One change of the sealed replay: the jerk it sets (2^-32 counts/cycle³, the direction of the
-/// move folded in) and the cycles it holds, to the next change.
+/// move folded in) and the cycles it holds, to the next change (for the slow path, the
+/// predictions and the tests; the replay reads [`Run`]s).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) struct JerkChange {
     /// The cycles the change holds; the end marker's: for ever (`u64::MAX`).
     pub hold: u64,
     /// The jerk from this change on, raw units.
     pub jerk: i64,
+}
+
+/// One run of the sealed replay as the fast path of [`super::SCurve`]'s step copies it, whole,
+/// into the generator: the jerk it sets and a 32-bit countdown that carries, in the same eight
+/// bytes, where the replay goes when it runs out (on a Cortex-M4 the copy is two 8-byte loads
+/// and two stores, and the countdown one 32-bit subtraction a cycle, not three).
+///
+/// A run longer than 2^32 cycles (only a run without jerk can be: with one, J·m ≤ 2A bounds
+/// m by 2^32) counts its first `count` cycles, then `laps` of 2^32 on the slow path, which its
+/// `next` (past [`LAPS`]) sends it to. Its length is below 2^48 cycles — the longest is a
+/// cruise, at most distance/velocity < 2^64 / 2^16 raw (the velocity register's least step is
+/// 2^-16 counts/cycle) — so 16 bits hold the laps.
+///
+/// While the schedule is being built, a slot at the top of the array holds a change of the main
+/// move instead ([`Self::main_change`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(C)]
+pub(super) struct Run {
+    /// The jerk from this change on, raw units (I32F32 bits), the direction folded in.
+    pub jerk: i64,
+    /// Cycles to the next event, modulo 2^32 (0 stands for 2^32: a step counts down first).
+    pub count: u32,
+    /// Where the replay goes when the count runs out: the index of the next run; past the
+    /// array the slow path's ([`SENTINEL`], [`PENDING`], [`ABRUPT_REST`], [`LAPS`] + the next
+    /// run's index while laps remain).
+    pub next: u16,
+    /// Laps of 2^32 cycles still to count after `count` (see [`LAPS`]).
+    pub laps: u16,
+}
+
+impl Run {
+    /// The end marker, after a move's last run: no jerk (the move is at rest there), and the
+    /// slow path after 2^32 cycles, which rests.
+    pub const END: Self = Self {
+        jerk: 0,
+        count: 0,
+        next: SENTINEL,
+        laps: 0,
+    };
+
+    /// `jerk` for `cycles` (≥ 1) cycles, then the run at index `next`.
+    pub const fn new(jerk: i64, cycles: u64, next: u16) -> Self {
+        // cycles = count + laps·2^32 with count in 1 ..= 2^32 (2^32 kept as 0).
+        let below = cycles.saturating_sub(1);
+        let laps = below >> 32;
+        Self {
+            jerk,
+            count: (below as u32).wrapping_add(1),
+            next: if laps == 0 { next } else { LAPS + next },
+            // Below 2^16 (see the type); saturated, not wrapped, were it ever not.
+            laps: if laps > u16::MAX as u64 {
+                u16::MAX
+            } else {
+                laps as u16
+            },
+        }
+    }
+
+    /// The cycles left in the run: its count, then its laps.
+    pub const fn cycles(&self) -> u64 {
+        let count = if self.count == 0 {
+            1 << 32
+        } else {
+            self.count as u64
+        };
+        count + ((self.laps as u64) << 32)
+    }
+
+    /// The index the replay goes on at after the run (its laps counted).
+    pub const fn after(&self) -> u16 {
+        if self.next >= LAPS {
+            self.next - LAPS
+        } else {
+            self.next
+        }
+    }
+
+    /// As a change: the cycles it holds (an end marker's for ever) and its jerk.
+    pub const fn change(&self) -> JerkChange {
+        JerkChange {
+            hold: if self.next == SENTINEL {
+                u64::MAX
+            } else {
+                self.cycles()
+            },
+            jerk: self.jerk,
+        }
+    }
+
+    /// While building: a change of the main move by `residue` (the change of the jerk modulo
+    /// 2^32, see the schedule's slots) on `cycle`, kept in the slot's jerk and count.
+    const fn main_change(cycle: u64, residue: i32) -> Self {
+        Self {
+            jerk: cycle as i64,
+            count: residue as u32,
+            next: 0,
+            laps: 0,
+        }
+    }
+
+    /// While building: the cycle of the main move's change this slot holds.
+    const fn cycle(&self) -> u64 {
+        self.jerk as u64
+    }
+
+    /// While building: the change of the jerk modulo 2^32 this slot holds.
+    const fn residue(&self) -> i32 {
+        self.count as i32
+    }
 }
 
 /// At most this many runs in a sealed replay, its end marker included. The changes of a plan fall
@@ -26,16 +136,22 @@ pub(super) struct JerkChange {
 /// closes the replay: 45.
 pub(super) const MAX_CHANGES: usize = 45;
 
-/// The index that stands for "no jerk change": past the end of the arrays, so a replay pointed at
-/// it takes the slow path on its next event.
-pub(super) const SENTINEL: usize = MAX_CHANGES;
+/// The index that stands for "no jerk change": past the end of the array, so a replay pointed at
+/// it takes the slow path on its next event. (An end marker's `next`.)
+pub(super) const SENTINEL: u16 = MAX_CHANGES as u16;
 
 /// Past the sentinel, a change the fast path replays that is not the schedule's ([`super::SCurve`]
-/// keeps it: an abrupt stop's level-off, whose jerk is too wide for the arrays; the replay after
-/// the corrected first step of a move started right after an abrupt stop).
-pub(super) const PENDING: usize = SENTINEL + 1;
-/// Rest after an abrupt stop (jerk zero for ever).
-pub(super) const ABRUPT_REST: usize = SENTINEL + 2;
+/// keeps it: an abrupt stop's level-off, which leaves the plan's changes as they are; the replay
+/// after the corrected first step of a move started right after an abrupt stop).
+pub(super) const PENDING: u16 = SENTINEL + 1;
+/// Rest after an abrupt stop (jerk zero; the slow path every 2^32 cycles).
+pub(super) const ABRUPT_REST: u16 = SENTINEL + 2;
+/// An abrupt stop's rest under way.
+pub(super) const AFTER_ABRUPT_REST: u16 = SENTINEL + 3;
+/// `LAPS + i`: a run's laps of 2^32 cycles are being counted (on the slow path), then the replay
+/// goes on at index `i`.
+pub(super) const LAPS: u16 = 64;
+const _: () = assert!(AFTER_ABRUPT_REST < LAPS);
 
 /// At most this many changes of the main move (see [`MAX_CHANGES`]): 20 with notch pairs, 30
 /// with fine units.
@@ -68,8 +184,8 @@ trait Cycle: Copy + Ord + core::ops::Add<Output = Self> + core::ops::Sub<Output 
     const NEVER: Self;
     /// The cycle as this width (the pass only narrows cycles of the move, which fit).
     fn narrow(cycle: u64) -> Self;
-    /// Back to 64 bits.
-    fn widen(self) -> u64;
+    /// The run of this many cycles (≥ 1) at `jerk`, then the run at index `next`.
+    fn run(self, jerk: i64, next: u16) -> Run;
 }
 
 impl Cycle for u32 {
@@ -78,8 +194,14 @@ impl Cycle for u32 {
         // Cycles past the move (none are) would sort last, as they should.
         u32::try_from(cycle).unwrap_or(u32::MAX)
     }
-    fn widen(self) -> u64 {
-        u64::from(self)
+    fn run(self, jerk: i64, next: u16) -> Run {
+        // Below 2^31 cycles: the count alone, no laps.
+        Run {
+            jerk,
+            count: self,
+            next,
+            laps: 0,
+        }
     }
 }
 
@@ -88,8 +210,8 @@ impl Cycle for u64 {
     fn narrow(cycle: u64) -> Self {
         cycle
     }
-    fn widen(self) -> u64 {
-        self
+    fn run(self, jerk: i64, next: u16) -> Run {
+        Run::new(jerk, self, next)
     }
 }
 
@@ -169,18 +291,21 @@ pub(super) struct Replay {
 /// cycle added up), closed by an end marker on the cycle after the last (which brings the jerk
 /// back to zero), and its summary.
 ///
-/// Two arrays rather than one of pairs: a jerk is at most J < 2^31 raw units, so 32 bits hold it,
-/// and the generator — which carries the schedule, and is copied when it is returned — is a
-/// quarter smaller (a copy costs about an instruction per byte on a Cortex-M4).
+/// One array of [`Run`]s, each what the replay's change (the fast path of [`super::SCurve`]'s
+/// step, on the cycles its jerk changes) copies whole: its jerk 64 bits wide, its countdown and
+/// the index after it in one 8-byte word. Two arrays, 64-bit holds and 32-bit jerks, a quarter
+/// smaller, cost that path two addresses, a sign extension and the index's increment, and every
+/// cycle a 64-bit countdown: on a Cortex-M4 the S-curve's step took 39 instructions at most
+/// (now 33) and its 3-axis line 63 (now 60, SPEC §16's budget). The price is the copy of the
+/// larger generator when a move is planned, a few hundred instructions.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) struct Schedule {
-    /// While building: the cycle of each change of the main move (0 = the first step), sorted,
-    /// in the top `main_len` entries. Sealed: the cycles each run holds, in `[0, len)`.
-    holds: [u64; MAX_CHANGES],
-    /// While building: the change of the jerk, modulo 2^32 (a change is at most 2J < 2^32, so
-    /// it is zero exactly when its residue is, and the running sum of the residues is the jerk,
-    /// which fits 32 bits). Sealed: the jerk each run sets.
-    jerks: [i32; MAX_CHANGES],
+    /// While building: in the top `main_len` slots, each change of the main move, sorted by its
+    /// cycle (0 = the first step), with the change of the jerk modulo 2^32 (a change is at most
+    /// 2J < 2^32, so it is zero exactly when its residue is, and the running sum of the
+    /// residues is the jerk, which fits 32 bits) — [`Run::main_change`]. Sealed: the runs in
+    /// `[0, len)`, and a smooth stop's at the end of the array.
+    runs: [Run; MAX_CHANGES],
     /// Sealed: how many runs, the end marker included.
     len: usize,
     /// While building: how many changes of the main move there are, at the top of the arrays
@@ -194,8 +319,12 @@ pub(super) struct Schedule {
 impl Schedule {
     /// No move.
     pub const EMPTY: Self = Self {
-        holds: [0; MAX_CHANGES],
-        jerks: [0; MAX_CHANGES],
+        runs: [Run {
+            jerk: 0,
+            count: 0,
+            next: 0,
+            laps: 0,
+        }; MAX_CHANGES],
         len: 0,
         main_len: 0,
         plan: ScurvePlan {
@@ -206,27 +335,26 @@ impl Schedule {
         },
     };
 
-    /// The sealed change at `index`; `None` past the arrays ([`SENTINEL`]). One comparison on
-    /// the replay's path, which the bounds checks of both arrays share.
-    #[inline]
-    pub fn change(&self, index: usize) -> Option<JerkChange> {
-        (index < MAX_CHANGES).then(|| JerkChange {
-            hold: self.holds[index],
-            jerk: i64::from(self.jerks[index]),
-        })
+    /// The sealed run at `index`; `None` past the array (the slow path's indices): one
+    /// comparison and one address on the replay's path.
+    #[inline(always)]
+    pub fn run_at(&self, index: u16) -> Option<&Run> {
+        self.runs.get(usize::from(index))
     }
 
-    /// The sealed change at `index`, or the end marker's past the arrays (for the slow path).
-    pub fn run(&self, index: usize) -> JerkChange {
-        self.change(index).unwrap_or(JerkChange {
-            hold: u64::MAX,
-            jerk: 0,
-        })
+    /// The sealed run at `index`, or an end marker past the array.
+    pub fn run(&self, index: u16) -> Run {
+        self.run_at(index).copied().unwrap_or(Run::END)
+    }
+
+    /// The sealed change at `index` (an end marker's past the array), for the slow path.
+    pub fn change(&self, index: u16) -> JerkChange {
+        self.run(index).change()
     }
 
     /// How many changes the sealed replay has, its end marker included.
-    pub fn len(&self) -> usize {
-        self.len
+    pub fn len(&self) -> u16 {
+        self.len as u16
     }
 
     /// No move.
@@ -241,7 +369,7 @@ impl Schedule {
     /// acceleration and the velocity and at most half the jerk (checked by the caller).
     pub fn pulse(&mut self, distance: u64, direction: i64) {
         self.main_len = 0;
-        // The changes +d, −3d, +3d, each below 2^33 and kept modulo 2^32 (see `jerks`).
+        // The changes +d, −3d, +3d, each below 2^33 and kept modulo 2^32 (see `runs`).
         let d = distance as i64;
         for (cycle, amount) in [(2, 3 * d), (1, -3 * d), (0, d)] {
             self.prepend(cycle, amount * direction);
@@ -261,17 +389,15 @@ impl Schedule {
     /// of the first: a replay from there ends with the marker, and the index after it is
     /// [`SENTINEL`]. The plan's own changes before them stay as they are unless the two overlap
     /// ([`Self::fits_after`]); its summary and length are left as they are.
-    pub fn seal_at_end(&mut self, changes: &[(u64, i64)], direction: i64) -> usize {
+    pub fn seal_at_end(&mut self, changes: &[(u64, i64)], direction: i64) -> u16 {
         let count = changes.len().min(MAX_CHANGES - 1);
         let first = MAX_CHANGES - 1 - count;
         for (index, &(hold, jerk)) in changes[..count].iter().enumerate() {
-            self.holds[first + index] = hold;
-            // |jerk| ≤ J < 2^31: within 32 bits.
-            self.jerks[first + index] = (jerk * direction) as i32;
+            let at = first + index;
+            self.runs[at] = Run::new(jerk * direction, hold, at as u16 + 1);
         }
-        self.holds[MAX_CHANGES - 1] = u64::MAX;
-        self.jerks[MAX_CHANGES - 1] = 0;
-        first
+        self.runs[MAX_CHANGES - 1] = Run::END;
+        first as u16
     }
 
     /// Whether `count` changes and an end marker fit after the plan's changes
@@ -283,25 +409,23 @@ impl Schedule {
     /// The runs of the sealed replay, `(cycles, jerk)` in order, the end marker left out.
     pub fn runs(&self) -> impl Iterator<Item = (u64, i64)> + '_ {
         let runs = self.len.saturating_sub(1);
-        self.holds[..runs]
-            .iter()
-            .zip(&self.jerks[..runs])
-            .map(|(&hold, &jerk)| (hold, i64::from(jerk)))
+        self.runs[..runs].iter().map(|run| (run.cycles(), run.jerk))
     }
 
     /// Adds `amount` on `cycle` to the main move's changes (the top `main_len` entries), keeping
     /// them sorted: the corners arrive latest first, so a change goes in at the front, or a step
     /// or two in, or is added to a change on the same cycle.
     fn prepend(&mut self, cycle: u64, amount: i64) {
-        // Modulo 2^32 (see `jerks`): the truncation is the residue.
+        // Modulo 2^32 (see `runs`): the truncation is the residue.
         let amount = amount as i32;
         let start = MAX_CHANGES - self.main_len.min(MAX_CHANGES);
         let mut at = start;
-        while at < MAX_CHANGES && self.holds[at] < cycle {
+        while at < MAX_CHANGES && self.runs[at].cycle() < cycle {
             at += 1;
         }
-        if at < MAX_CHANGES && self.holds[at] == cycle {
-            self.jerks[at] = self.jerks[at].wrapping_add(amount);
+        if at < MAX_CHANGES && self.runs[at].cycle() == cycle {
+            let residue = self.runs[at].residue().wrapping_add(amount);
+            self.runs[at] = Run::main_change(cycle, residue);
             return;
         }
         if start + MAX_MAIN_CHANGES <= MAX_CHANGES {
@@ -309,11 +433,9 @@ impl Schedule {
         }
         // A step or two at most: a loop, not a library call.
         for k in start..at {
-            self.holds[k - 1] = self.holds[k];
-            self.jerks[k - 1] = self.jerks[k];
+            self.runs[k - 1] = self.runs[k];
         }
-        self.holds[at - 1] = cycle;
-        self.jerks[at - 1] = amount;
+        self.runs[at - 1] = Run::main_change(cycle, amount);
         self.main_len += 1;
     }
 
@@ -408,11 +530,15 @@ impl Schedule {
         queue.sort_unstable_by_key(|stream| stream.cycle);
         let sign = direction as i32;
         let mut main = MAX_CHANGES - self.main_len.min(MAX_CHANGES);
-        // The run open from cycle `from` with jerk `jerk`; runs before `written` are sealed.
+        // The jerk from cycle `from` on is `jerk`; runs before `written` are sealed, and the run
+        // before `from`, `open_cycles` at `open_jerk`, is written once the next run's jerk
+        // differs (a run's count and laps need its whole length). No jerk is i32::MIN
+        // (|jerk| ≤ J < 2^31), so the first run merges with nothing.
         let (mut written, mut from, mut jerk) = (0, C::narrow(0), 0i32);
+        let (mut open_cycles, mut open_jerk) = (C::narrow(0), i32::MIN);
         loop {
             let main_cycle = if main < MAX_CHANGES {
-                C::narrow(self.holds[main])
+                C::narrow(self.runs[main].cycle())
             } else {
                 C::NEVER
             };
@@ -424,20 +550,19 @@ impl Schedule {
             }
             .min(total);
             if cycle != from {
-                let hold = (cycle - from).widen();
-                if written > 0 && self.jerks[written - 1] == jerk {
-                    self.holds[written - 1] += hold;
-                } else if written < MAX_CHANGES - 1 {
-                    self.holds[written] = hold;
-                    self.jerks[written] = jerk;
-                    written += 1;
+                let hold = cycle - from;
+                if jerk == open_jerk {
+                    open_cycles = open_cycles + hold;
+                } else {
+                    self.write_run(&mut written, open_cycles, open_jerk);
+                    (open_cycles, open_jerk) = (hold, jerk);
                 }
                 from = cycle;
             }
             if cycle == total {
                 break;
             }
-            // The running sum modulo 2^32 is the jerk (see `jerks`).
+            // The running sum modulo 2^32 is the jerk (see `runs`).
             let change = if from_notch {
                 let amount = queue[0].advance();
                 // Back into the queue: a step or two down.
@@ -450,13 +575,22 @@ impl Schedule {
                 amount * sign
             } else {
                 main += 1;
-                self.jerks[main - 1]
+                self.runs[main - 1].residue()
             };
             jerk = jerk.wrapping_add(change);
         }
-        self.holds[written] = u64::MAX;
-        self.jerks[written] = 0;
+        self.write_run(&mut written, open_cycles, open_jerk);
+        self.runs[written] = Run::END;
         self.len = written + 1;
+    }
+
+    /// Writes a run of `cycles` (none if zero) at `jerk` at index `written`, moving on; the
+    /// slots before the end marker's are enough (see [`MAX_CHANGES`]).
+    fn write_run<C: Cycle>(&mut self, written: &mut usize, cycles: C, jerk: i32) {
+        if cycles != C::narrow(0) && *written < MAX_CHANGES - 1 {
+            self.runs[*written] = cycles.run(i64::from(jerk), *written as u16 + 1);
+            *written += 1;
+        }
     }
 
     /// Replays the sealed schedule run by run, in the move's direction (`direction` ±1): its

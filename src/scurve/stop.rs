@@ -166,13 +166,11 @@ mod tests {
         let state = axis.predict().unwrap().state_at(cycle);
         let mut from = 0u64;
         for index in 0..axis.schedule.len() {
-            let change = axis.schedule.run(index);
-            let to = from.saturating_add(change.hold);
+            let run = axis.schedule.run(index);
+            let to = from.saturating_add(run.change().hold);
             if cycle < to {
                 axis.state = state;
-                axis.jerk = change.jerk;
-                axis.countdown = to - cycle;
-                axis.next_change = index + 1;
+                axis.run = super::super::Run::new(run.jerk, to - cycle, run.after());
                 return;
             }
             from = to;
@@ -229,7 +227,7 @@ mod tests {
             let (direction, limits) = (axis.direction, axis.limits);
             axis.stop(StopKind::Smooth);
             if axis.motion == super::super::Motion::Stopping {
-                prop_assert!(axis.next_change != super::super::SENTINEL, "laid out");
+                prop_assert!(axis.run.next != super::super::SENTINEL, "laid out");
             }
             let mut state = axis.state();
             // The stop's prediction, as soon as it is given, against the steps.
@@ -255,8 +253,8 @@ mod tests {
             prop_assert!(axis.motion == super::super::Motion::Stopping);
             let future = axis.predict().unwrap();
             let end = future.completion().unwrap();
-            let mut change = axis.countdown;
-            let mut index = axis.next_change;
+            let mut change = axis.run.cycles();
+            let mut index = axis.run.after();
             let mut checked = 0;
             loop {
                 for k in change.saturating_sub(3)..(change + 3).min(end + 1) {
@@ -267,10 +265,10 @@ mod tests {
                     }
                     checked += 1;
                 }
-                if change >= end || index >= super::super::schedule::MAX_CHANGES {
+                if change >= end || usize::from(index) >= super::super::schedule::MAX_CHANGES {
                     break;
                 }
-                change = change.saturating_add(axis.schedule.run(index).hold);
+                change = change.saturating_add(axis.schedule.change(index).hold);
                 index += 1;
             }
             prop_assert!(checked > 0);
