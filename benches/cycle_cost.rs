@@ -7,7 +7,7 @@
 //! - `microstep lookup`: `MicrostepTable::outputs`;
 //! - `3-axis line per cycle`: `LinearInterpolation::step` (profile plus geometry, SPEC §16) on
 //!   reference 003's line, driven by the MCX514 trapezoid and S-curve and by the crate's
-//!   trapezoid, by phase;
+//!   trapezoid and S-curve, by phase;
 //! - `circle per cycle`: `CircularInterpolation::step` (profile plus arc, SPEC §16's 150 on the
 //!   Cortex-M4) on reference 003's circle (r = 10,000, 56,568 steps), driven by the MCX514
 //!   trapezoid and by the crate's trapezoid;
@@ -36,8 +36,8 @@ use criterion::{
 use profilegen::format::CycleTime;
 use profilegen::interpolation::{Arc, Direction};
 use profilegen::{
-    DecelerationMode, Mcx514Trapezoidal, ProfileGenerator, State, Trapezoidal,
-    TrapezoidalParameters,
+    DecelerationMode, Mcx514Trapezoidal, ProfileGenerator, SCurve, ScurveParameters, State,
+    Trapezoidal, TrapezoidalParameters,
 };
 
 /// The longest window timed, cycles or steps.
@@ -165,6 +165,19 @@ fn manual_line_trapezoid() -> Trapezoidal {
         acceleration: Acceleration::from_num(0.065).unwrap(),
         deceleration: Acceleration::ZERO,
         start_velocity: TargetVelocity::ZERO,
+    })
+    .unwrap()
+}
+
+/// The crate's S-curve on the same line: 20 steps/cycle, 0.065 steps/cycle², 0.00065
+/// steps/cycle³ (the MCX514 S-curve's registers at 1 ms).
+fn manual_line_scurve() -> SCurve {
+    use profilegen::format::mc1451a::{Jerk, MaxVelocity, ScurveAcceleration};
+    SCurve::new(ScurveParameters {
+        destination: common::manual_line().steps() as i32,
+        max_velocity: MaxVelocity::from_num(20.0).unwrap(),
+        max_acceleration: ScurveAcceleration::from_num(0.065).unwrap(),
+        jerk: Jerk::from_num(0.00065).unwrap(),
     })
     .unwrap()
 }
@@ -304,6 +317,7 @@ fn line_cost(c: &mut Criterion) {
         &common::manual_line_mcx514_scurve(),
     );
     line_phases(&mut group, "trapezoidal", &manual_line_trapezoid());
+    line_phases(&mut group, "scurve", &manual_line_scurve());
     group.finish();
 }
 
@@ -311,11 +325,7 @@ fn setup_cost(c: &mut Criterion) {
     let mut group = c.benchmark_group("set up a move");
     let scurve = common::scurve_parameters();
     group.bench_function("scurve/plan", |b| {
-        b.iter(|| {
-            profilegen::SCurve::new(black_box(scurve))
-                .unwrap()
-                .duration()
-        })
+        b.iter(|| SCurve::new(black_box(scurve)).unwrap().duration())
     });
     let trapezoid = common::trapezoidal_parameters();
     group.bench_function("trapezoidal/plan", |b| {
