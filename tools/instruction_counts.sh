@@ -8,8 +8,10 @@
 # x86: benches/examples/step_instructions.rs steps each generator through a window of cycles that all
 # lie in one phase of the bench move (benches/common), calling `step` through a trait object;
 # callgrind counts the instructions inside `step` (callees included) and this divides by the
-# window's cycles. Cortex-M4: tools/cortex_m4_budgets.sh (every cycle of every generator of the
-# probe, counted under an emulator; the call itself included).
+# window's cycles. Also x86 planning: benches/examples/plan_instructions.rs plans the planning
+# bench's first 20,000 S-curve moves, and callgrind counts `SCurve::new` inclusive, per plan.
+# Cortex-M4: tools/cortex_m4_budgets.sh (every cycle of every generator of the probe, counted
+# under an emulator; the call itself included).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -45,6 +47,24 @@ printf '%-26s %8s %8s %10s\n' window cycles instr/cycle function
   awk -v n="$name" -v c="$cycles" -v t="$total" -v f="$function" \
     'BEGIN { printf "%-26s %8d %8.1f   %s\n", n, c, t / c, f }'
 done
+
+# Planning: SCurve::new over the first 20,000 moves of the planning bench, inclusive of all it
+# calls (the moves' registers are drawn outside it), divided by the moves.
+cargo build --quiet --release -p profilegen-benches --example plan_instructions
+moves=20000
+valgrind --tool=callgrind --callgrind-out-file="$out" \
+  target/release/examples/plan_instructions "$moves" >/dev/null 2>&1
+function='profilegen::scurve::SCurve::new'
+total=$(callgrind_annotate --inclusive=yes "$out" 2>/dev/null \
+  | grep -F ":$function [" | head -1 | awk '{gsub(",", "", $1); print $1}')
+if [ -z "$total" ]; then
+  echo "planning: no count for $function" >&2
+  exit 1
+fi
+echo
+echo "== x86 instructions per S-curve plan (callgrind, inclusive; the planning bench's first moves)"
+awk -v m="$moves" -v t="$total" -v f="$function" \
+  'BEGIN { printf "%-26s %8d %8.0f   %s\n", "scurve/plan (mean)", m, t / m, f }'
 
 if [ "${1:-}" != "--x86" ]; then
   echo

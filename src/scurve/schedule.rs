@@ -273,6 +273,60 @@ impl<C: Cycle> Stream<C> {
     }
 }
 
+/// The first stream's next change (±1), the stream put back in order (a step or two down).
+fn next_notch_change<C: Cycle>(queue: &mut [Stream<C>; MAX_NOTCHES]) -> i32 {
+    let amount = queue[0].advance();
+    if queue[1].cycle < queue[0].cycle {
+        queue.swap(0, 1);
+        if queue[2].cycle < queue[1].cycle {
+            queue.swap(1, 2);
+        }
+    }
+    amount
+}
+
+/// A sealing pass under way ([`Schedule::seal`]): the jerk from cycle `from` on is `jerk`; runs
+/// before `written` are sealed, and the run before `from`, `open_cycles` at `open_jerk`, is
+/// written once the next run's jerk differs (a run's count and laps need its whole length). No
+/// jerk is i32::MIN (|jerk| ≤ J < 2^31), so the first run merges with nothing.
+struct Sealing<C> {
+    written: usize,
+    from: C,
+    jerk: i32,
+    open_cycles: C,
+    open_jerk: i32,
+}
+
+impl<C: Cycle> Sealing<C> {
+    /// The jerk changes by `change` (modulo 2^32) on `cycle` (not before `from`).
+    #[inline]
+    fn change(&mut self, runs: &mut [Run; MAX_CHANGES], cycle: C, change: i32) {
+        if cycle != self.from {
+            let hold = cycle - self.from;
+            if self.jerk == self.open_jerk {
+                self.open_cycles = self.open_cycles + hold;
+            } else {
+                self.write_open(runs);
+                (self.open_cycles, self.open_jerk) = (hold, self.jerk);
+            }
+            self.from = cycle;
+        }
+        self.jerk = self.jerk.wrapping_add(change);
+    }
+
+    /// Writes the open run, if any, at index `written`, moving on; the slots before the end
+    /// marker's are enough (see [`MAX_CHANGES`]).
+    #[inline]
+    fn write_open(&mut self, runs: &mut [Run; MAX_CHANGES]) {
+        if self.open_cycles != C::narrow(0) && self.written < MAX_CHANGES - 1 {
+            runs[self.written] = self
+                .open_cycles
+                .run(i64::from(self.open_jerk), self.written as u16 + 1);
+            self.written += 1;
+        }
+    }
+}
+
 /// What a replay of a sealed schedule does, run by run ([`Schedule::replay`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub(super) struct Replay {
@@ -522,75 +576,48 @@ impl Schedule {
     fn seal_in<C: Cycle>(&mut self, placement: &Placement, direction: i64) {
         let total = C::narrow(self.plan.total);
         // The pairs' streams, earliest next change first; a stream that is done sinks to the
-        // end. One comparison per change picks the main move's or the first stream's.
+        // end.
         let mut queue = [Stream::<C>::DONE; MAX_NOTCHES];
         for (stream, notch) in queue.iter_mut().zip(placement.notches()) {
             *stream = Stream::new(notch);
         }
         queue.sort_unstable_by_key(|stream| stream.cycle);
         let sign = direction as i32;
-        let mut main = MAX_CHANGES - self.main_len.min(MAX_CHANGES);
-        // The jerk from cycle `from` on is `jerk`; runs before `written` are sealed, and the run
-        // before `from`, `open_cycles` at `open_jerk`, is written once the next run's jerk
-        // differs (a run's count and laps need its whole length). No jerk is i32::MIN
-        // (|jerk| ≤ J < 2^31), so the first run merges with nothing.
-        let (mut written, mut from, mut jerk) = (0, C::narrow(0), 0i32);
-        let (mut open_cycles, mut open_jerk) = (C::narrow(0), i32::MIN);
-        loop {
-            let main_cycle = if main < MAX_CHANGES {
-                C::narrow(self.runs[main].cycle())
-            } else {
-                C::NEVER
-            };
-            let from_notch = queue[0].cycle < main_cycle;
-            let cycle = if from_notch {
-                queue[0].cycle
-            } else {
-                main_cycle
-            }
-            .min(total);
-            if cycle != from {
-                let hold = cycle - from;
-                if jerk == open_jerk {
-                    open_cycles = open_cycles + hold;
-                } else {
-                    self.write_run(&mut written, open_cycles, open_jerk);
-                    (open_cycles, open_jerk) = (hold, jerk);
-                }
-                from = cycle;
+        let mut sealing = Sealing {
+            written: 0,
+            from: C::narrow(0),
+            jerk: 0,
+            open_cycles: C::narrow(0),
+            open_jerk: i32::MIN,
+        };
+        // The main move's changes in order, each after the notch changes before it (a notch
+        // change on the same cycle comes after it: the two add up either way).
+        for main in MAX_CHANGES - self.main_len.min(MAX_CHANGES)..MAX_CHANGES {
+            // Both read before any run is written (the writing stays behind, see above).
+            let (cycle, residue) = (
+                C::narrow(self.runs[main].cycle()).min(total),
+                self.runs[main].residue(),
+            );
+            while queue[0].cycle < cycle {
+                let at = queue[0].cycle;
+                let amount = next_notch_change(&mut queue);
+                sealing.change(&mut self.runs, at, amount * sign);
             }
             if cycle == total {
                 break;
             }
-            // The running sum modulo 2^32 is the jerk (see `runs`).
-            let change = if from_notch {
-                let amount = queue[0].advance();
-                // Back into the queue: a step or two down.
-                if queue[1].cycle < queue[0].cycle {
-                    queue.swap(0, 1);
-                    if queue[2].cycle < queue[1].cycle {
-                        queue.swap(1, 2);
-                    }
-                }
-                amount * sign
-            } else {
-                main += 1;
-                self.runs[main - 1].residue()
-            };
-            jerk = jerk.wrapping_add(change);
+            sealing.change(&mut self.runs, cycle, residue);
         }
-        self.write_run(&mut written, open_cycles, open_jerk);
-        self.runs[written] = Run::END;
-        self.len = written + 1;
-    }
-
-    /// Writes a run of `cycles` (none if zero) at `jerk` at index `written`, moving on; the
-    /// slots before the end marker's are enough (see [`MAX_CHANGES`]).
-    fn write_run<C: Cycle>(&mut self, written: &mut usize, cycles: C, jerk: i32) {
-        if cycles != C::narrow(0) && *written < MAX_CHANGES - 1 {
-            self.runs[*written] = cycles.run(i64::from(jerk), *written as u16 + 1);
-            *written += 1;
+        while queue[0].cycle < total {
+            let at = queue[0].cycle;
+            let amount = next_notch_change(&mut queue);
+            sealing.change(&mut self.runs, at, amount * sign);
         }
+        // The last run ends on the last cycle; the end marker follows it.
+        sealing.change(&mut self.runs, total, 0);
+        sealing.write_open(&mut self.runs);
+        self.runs[sealing.written] = Run::END;
+        self.len = sealing.written + 1;
     }
 
     /// Replays the sealed schedule run by run, in the move's direction (`direction` ±1): its
