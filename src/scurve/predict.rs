@@ -76,7 +76,7 @@ impl SCurve {
                     continues: false,
                 });
                 // Each later run continues from the state the closed forms lead to; the end
-                // marker, last, holds the rest for ever (a smooth stop's is the arrays' last).
+                // marker, last, holds the rest for ever (a smooth stop's is the array's last).
                 let end = if self.motion() == Motion::Stopping {
                     SENTINEL
                 } else {

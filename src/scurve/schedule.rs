@@ -160,7 +160,7 @@ const MAX_MAIN_CHANGES: usize = 30;
 /// At most this many changes from notch pairs: eight per pair.
 const MAX_NOTCH_CHANGES: usize = 8 * MAX_NOTCHES;
 
-// The sealing pass writes runs from the start of the arrays while it reads the main move's
+// The sealing pass writes runs from the start of the array while it reads the main move's
 // changes from their end; it cannot overtake them while the notch pairs' changes are fewer than
 // the free slots before the main move's 20 ([`Schedule::seal`]).
 const _: () = assert!(MAX_NOTCH_CHANGES < MAX_CHANGES - 20);
@@ -362,7 +362,7 @@ pub(super) struct Schedule {
     runs: [Run; MAX_CHANGES],
     /// Sealed: how many runs, the end marker included.
     len: usize,
-    /// While building: how many changes of the main move there are, at the top of the arrays
+    /// While building: how many changes of the main move there are, at the top of the array
     /// (zero, not an index, when empty: the empty schedule is then all zeros, which a clear
     /// makes, where anything else is a copy from flash twice the cost on a Cortex-M4).
     main_len: usize,
@@ -439,7 +439,7 @@ impl Schedule {
 
     /// Writes `changes` (`(cycles held, jerk along the move)`, in order: a smooth stop's,
     /// [`super::stop::lay_out`], at most [`MAX_CHANGES`] − 1) in the direction `direction` (±1)
-    /// at the end of the arrays, closed by an end marker in the last slot, and returns the index
+    /// at the end of the array, closed by an end marker in the last slot, and returns the index
     /// of the first: a replay from there ends with the marker, and the index after it is
     /// [`SENTINEL`]. The plan's own changes before them stay as they are unless the two overlap
     /// ([`Self::fits_after`]); its summary and length are left as they are.
@@ -553,15 +553,15 @@ impl Schedule {
 
     /// Makes the main move's changes (sorted, the top `main_len` entries) and the notch pairs of
     /// `placement` a replay: runs of constant jerk, each the jerk it sets and the cycles it
-    /// holds, from index 0, closed by an end marker (setting the jerk to zero, held for ever:
-    /// the acceleration and velocity are zero there already).
+    /// holds, from index 0, closed by an end marker (setting the jerk to zero for good: the
+    /// acceleration and velocity are zero there already; [`Run::END`]).
     ///
     /// One forward pass merges the three streams of notch changes (each pair's eight changes
     /// come in order: a jerk of ±1 on one cycle is a change by ±1 on it and back on the next)
     /// into the main move's, adds up changes on the same cycle and drops changes that leave the
     /// jerk as it was (and those on or after the last cycle), which would cost a replay's slow
-    /// path for nothing. The runs are written from the start of the arrays while the main
-    /// move's changes are read from their end: after `r` main and `n` notch changes at most
+    /// path for nothing. The runs are written from the start of the array while the main
+    /// move's changes are read from its end: after `r` main and `n` notch changes at most
     /// `r + n` runs are written, and `n ≤ 24 < MAX_CHANGES − 20`, so the writing never
     /// overtakes the reading.
     fn seal(&mut self, placement: &Placement, direction: i64) {
