@@ -16,7 +16,7 @@
 //! A plain `main` (harness = false) that prints tables; unknown arguments (`--bench`, filters) are
 //! ignored.
 
-#[allow(dead_code)] // the bench takes only `scurve_move`
+#[allow(dead_code)] // the bench takes only `scurve_move` and `scurve_parameters`
 #[path = "common/moves.rs"]
 mod moves;
 
@@ -24,7 +24,6 @@ use std::collections::BTreeMap;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use profilegen::format::mc1451a::{Jerk, MaxVelocity, ScurveAcceleration};
 use profilegen::reference::scurve_duration;
 use profilegen::{SCurve, ScurveParameters};
 use rsruckig::prelude::*;
@@ -56,19 +55,12 @@ struct Move {
 impl Move {
     fn new(index: u64) -> Self {
         let raw = moves::scurve_move(index);
-        let (destination, velocity, acceleration, jerk) = raw;
-        let parameters = ScurveParameters {
-            destination,
-            max_velocity: MaxVelocity::from_bits(velocity).expect("velocity in range"),
-            max_acceleration: ScurveAcceleration::from_bits(acceleration)
-                .expect("acceleration in range"),
-            jerk: Jerk::from_bits(jerk).expect("jerk in range"),
-        };
+        let parameters = moves::scurve_parameters(index);
         Self {
             index,
             raw,
             parameters,
-            distance: f64::from(destination),
+            distance: f64::from(parameters.destination),
             velocity: parameters.max_velocity.to_f64(),
             acceleration: parameters.max_acceleration.to_f64(),
             jerk: parameters.jerk.to_f64(),

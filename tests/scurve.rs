@@ -2,7 +2,7 @@
 
 mod strategies;
 
-#[allow(dead_code)] // the tests take only `scurve_move`
+#[allow(dead_code)] // the tests take only `scurve_parameters`
 #[path = "../benches/common/moves.rs"]
 mod moves;
 
@@ -179,15 +179,9 @@ fn durations_over_the_register_ranges() {
     let moves = 20_000;
     let mut excess_sum = 0.0;
     for index in 0..moves {
-        let (destination, velocity, acceleration, jerk) = moves::scurve_move(index);
-        let p = ScurveParameters {
-            destination,
-            max_velocity: MaxVelocity::from_bits(velocity).unwrap(),
-            max_acceleration: ScurveAcceleration::from_bits(acceleration).unwrap(),
-            jerk: Jerk::from_bits(jerk).unwrap(),
-        };
+        let p = moves::scurve_parameters(index);
         let plan = SCurve::new(p).unwrap().plan();
-        let excess = plan.total as f64 - optimum(&p, f64::from(destination).abs());
+        let excess = plan.total as f64 - optimum(&p, f64::from(p.destination).abs());
         assert!(
             excess <= 3.0,
             "move {index}: {excess} cycles over the optimum"

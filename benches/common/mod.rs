@@ -74,19 +74,24 @@ pub fn manual_line() -> Line<3> {
     Line::from_pulses([-20_000, 30_000, -50_000]).unwrap()
 }
 
-/// Its MCX514 trapezoid at a 1 ms cycle: SV 500 pps, DV 20,000 pps, AC = DC = 65,000 pps/s
-/// (0.5 and 20 steps/cycle, 0.065 steps/cycle²), automatic deceleration.
-pub fn manual_line_mcx514() -> Mcx514Trapezoidal {
+/// Its MCX514 registers: SV 500 pps, DV 20,000 pps, AC = DC = 65,000 pps/s (at a 1 ms cycle 0.5
+/// and 20 steps/cycle, 0.065 steps/cycle²), automatic deceleration.
+fn manual_line_mcx514_parameters() -> Mcx514Parameters {
     use profilegen::format::mcx514::{Acceleration, Deceleration, DriveSpeed, InitialSpeed};
+    Mcx514Parameters {
+        pulses: manual_line().steps(),
+        initial_speed: InitialSpeed::from_bits(500).unwrap(),
+        drive_speed: DriveSpeed::from_bits(20_000).unwrap(),
+        acceleration: Acceleration::from_bits(65_000).unwrap(),
+        deceleration: Deceleration::from_bits(65_000).unwrap(),
+        deceleration_mode: DecelerationMode::Automatic,
+    }
+}
+
+/// Its MCX514 trapezoid at a 1 ms cycle ([`manual_line_mcx514_parameters`]).
+pub fn manual_line_mcx514() -> Mcx514Trapezoidal {
     Mcx514Trapezoidal::new(
-        Mcx514Parameters {
-            pulses: manual_line().steps(),
-            initial_speed: InitialSpeed::from_bits(500).unwrap(),
-            drive_speed: DriveSpeed::from_bits(20_000).unwrap(),
-            acceleration: Acceleration::from_bits(65_000).unwrap(),
-            deceleration: Deceleration::from_bits(65_000).unwrap(),
-            deceleration_mode: DecelerationMode::Automatic,
-        },
+        manual_line_mcx514_parameters(),
         CycleTime::from_seconds(1e-3).unwrap(),
     )
     .unwrap()
@@ -95,19 +100,10 @@ pub fn manual_line_mcx514() -> Mcx514Trapezoidal {
 /// The MCX514 S-curve on the same line: the same registers, JK = DJ = 650,000 pps/s² (the rate
 /// reaches AC in 0.1 s).
 pub fn manual_line_mcx514_scurve() -> Mcx514SCurve {
-    use profilegen::format::mcx514::{
-        Acceleration, Deceleration, DecelerationJerk, DriveSpeed, InitialSpeed, Jerk,
-    };
+    use profilegen::format::mcx514::{DecelerationJerk, Jerk};
     Mcx514SCurve::new(
         Mcx514ScurveParameters {
-            trapezoid: Mcx514Parameters {
-                pulses: manual_line().steps(),
-                initial_speed: InitialSpeed::from_bits(500).unwrap(),
-                drive_speed: DriveSpeed::from_bits(20_000).unwrap(),
-                acceleration: Acceleration::from_bits(65_000).unwrap(),
-                deceleration: Deceleration::from_bits(65_000).unwrap(),
-                deceleration_mode: DecelerationMode::Automatic,
-            },
+            trapezoid: manual_line_mcx514_parameters(),
             jerk: Jerk::from_bits(650_000).unwrap(),
             deceleration_jerk: DecelerationJerk::from_bits(650_000).unwrap(),
         },

@@ -1,6 +1,6 @@
 //! Random S-curve moves over the whole register ranges, reproducible one by one: move `index` is
 //! a pure function of `index`, the same on the host (benches) and on the Cortex-M4 probe
-//! (`probe/`, which includes this file by path), so it uses `core` only.
+//! (`probe/`, which includes this file by path), so it uses `core` and the (`no_std`) crate only.
 //!
 //! Every register is log-uniform over its whole raw range: a bit length drawn uniformly, then a
 //! uniform value with exactly that many bits. Small and large values are then equally likely per
@@ -60,4 +60,17 @@ pub fn scurve_move(index: u64) -> (i32, u32, u16, u32) {
     let acceleration = random.log_uniform(15) as u16;
     let jerk = random.log_uniform(31) as u32;
     (destination, velocity, acceleration, jerk)
+}
+
+/// S-curve move `index` ([`scurve_move`]) as the parameters `SCurve::new` takes.
+pub fn scurve_parameters(index: u64) -> profilegen::ScurveParameters {
+    use profilegen::format::mc1451a::{Jerk, MaxVelocity, ScurveAcceleration};
+    let (destination, velocity, acceleration, jerk) = scurve_move(index);
+    profilegen::ScurveParameters {
+        destination,
+        max_velocity: MaxVelocity::from_bits(velocity).expect("velocity in range"),
+        max_acceleration: ScurveAcceleration::from_bits(acceleration)
+            .expect("acceleration in range"),
+        jerk: Jerk::from_bits(jerk).expect("jerk in range"),
+    }
 }

@@ -6,14 +6,13 @@
 //!
 //! `cargo run --release -p profilegen-benches --example plan_instructions -- 20000`
 
-#[allow(dead_code)] // only `scurve_move`
+#[allow(dead_code)] // only `scurve_parameters`
 #[path = "../common/moves.rs"]
 mod moves;
 
 use std::hint::black_box;
 
-use profilegen::format::mc1451a::{Jerk, MaxVelocity, ScurveAcceleration};
-use profilegen::{SCurve, ScurveParameters};
+use profilegen::SCurve;
 
 fn main() {
     let count: u64 = std::env::args()
@@ -22,14 +21,7 @@ fn main() {
         .unwrap_or(20_000);
     let (mut planned, mut cycles) = (0u64, 0u64);
     for index in 0..count {
-        let (destination, velocity, acceleration, jerk) = moves::scurve_move(index);
-        let parameters = ScurveParameters {
-            destination,
-            max_velocity: MaxVelocity::from_bits(velocity).expect("velocity in range"),
-            max_acceleration: ScurveAcceleration::from_bits(acceleration)
-                .expect("acceleration in range"),
-            jerk: Jerk::from_bits(jerk).expect("jerk in range"),
-        };
+        let parameters = moves::scurve_parameters(index);
         if let Ok(axis) = black_box(SCurve::new(black_box(parameters))) {
             planned += 1;
             cycles += axis.duration();

@@ -60,6 +60,7 @@ use profilegen::{
     TrapezoidalParameters, VelocityContouring, VelocityParameters,
 };
 
+#[allow(dead_code)] // the probe takes the raw bits, `scurve_move`
 #[path = "../../benches/common/moves.rs"]
 mod moves;
 
