@@ -4,8 +4,22 @@
 //! counts down and tests a 32-bit word in two instructions where a 64-bit one takes five, and
 //! the laps are looked at only on the cycle the word reaches zero.
 
-/// A run's cycles left, counted down in 32 bits: `cycles = count + laps·2^32` with `count` in
-/// 1 … 2^32 (0 standing for 2^32). Shared by both kinds of run.
+/// `cycles` (≥ 1) as a 32-bit count in 1 … 2^32 (2^32 kept as 0: a countdown subtracts before it
+/// tests) and the laps of 2^32 cycles after it: `cycles = count + laps·2^32`. The S-curve's runs
+/// count the same way (their laps on the slow path).
+pub(crate) const fn count_and_laps(cycles: u64) -> (u32, u64) {
+    let below = cycles - 1;
+    ((below as u32).wrapping_add(1), below >> 32)
+}
+
+/// The cycles a count and its laps stand for ([`count_and_laps`] undone).
+pub(crate) const fn cycles_of(count: u32, laps: u64) -> u64 {
+    let count = if count == 0 { 1 << 32 } else { count as u64 };
+    count + (laps << 32)
+}
+
+/// A run's cycles left, counted down in 32 bits ([`count_and_laps`]). Shared by both kinds of
+/// run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(crate) struct Countdown {
     count: u32,
@@ -18,21 +32,16 @@ impl Countdown {
         if cycles == 0 {
             return Self { count: 0, laps: 0 };
         }
-        let below = cycles - 1;
+        let (count, laps) = count_and_laps(cycles);
         Self {
-            count: (below as u32).wrapping_add(1),
-            laps: (below >> 32) as u32,
+            count,
+            laps: laps as u32,
         }
     }
 
     /// The cycles left (≥ 1 while the run is replayed).
     pub(crate) const fn cycles(&self) -> u64 {
-        let count = if self.count == 0 {
-            1 << 32
-        } else {
-            self.count as u64
-        };
-        count + ((self.laps as u64) << 32)
+        cycles_of(self.count, self.laps as u64)
     }
 
     /// The slow path's marker: one cycle, whose end [`Self::tick`] reports as [`End::Lap`] (its

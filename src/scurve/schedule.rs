@@ -6,6 +6,7 @@ use fixed::types::I32F32;
 use super::remainder::{Notch, Placement, MAX_NOTCHES};
 use super::shape::{corners, MainMove};
 use super::ScurvePlan;
+use crate::replay::{count_and_laps, cycles_of};
 
 /// One change of the sealed replay: the jerk it sets (2^-32 counts/cycle³, the direction of the
 /// move folded in) and the cycles it holds, to the next change (for the slow path, the
@@ -56,14 +57,15 @@ impl Run {
         laps: 0,
     };
 
-    /// `jerk` for `cycles` (≥ 1) cycles, then the run at index `next`.
+    /// `jerk` for `cycles` (≥ 1; 0 counts as 1) cycles, then the run at index `next`.
     pub const fn new(jerk: i64, cycles: u64, next: u16) -> Self {
-        // cycles = count + laps·2^32 with count in 1 ..= 2^32 (2^32 kept as 0).
-        let below = cycles.saturating_sub(1);
-        let laps = below >> 32;
+        // 0 counts as 1 (written as the saturating subtraction `count_and_laps` undoes: the
+        // form that keeps an abrupt stop's cycle at 36 Cortex-M4 instructions, where a branch
+        // took 37).
+        let (count, laps) = count_and_laps(cycles.saturating_sub(1) + 1);
         Self {
             jerk,
-            count: (below as u32).wrapping_add(1),
+            count,
             next: if laps == 0 { next } else { LAPS + next },
             // Below 2^16 (see the type); saturated, not wrapped, were it ever not.
             laps: if laps > u16::MAX as u64 {
@@ -76,12 +78,7 @@ impl Run {
 
     /// The cycles left in the run: its count, then its laps.
     pub const fn cycles(&self) -> u64 {
-        let count = if self.count == 0 {
-            1 << 32
-        } else {
-            self.count as u64
-        };
-        count + ((self.laps as u64) << 32)
+        cycles_of(self.count, self.laps as u64)
     }
 
     /// The index the replay goes on at after the run (its laps counted).
