@@ -502,6 +502,47 @@ fn ramps_around_the_optimum_before_one_cycle_ramps() {
     }
 }
 
+/// A jerk of one raw unit leaves a single unit and notch pairs whose spans sit around the
+/// distance between two phase boundaries (K = 262,146 cycles here): two pairs of widths w, w + 1
+/// take (2w + 1)·[K − w, K + w], ranges with gaps between them while w² < K. The move of 2^20
+/// counts from 20,958,500 raw units past a count (found by the fuzzer, in an interpolation
+/// restarted after a stop) has a remainder of 20,696,356 in such a gap (w = 38: up to
+/// 20,188,168; w = 39: from 20,706,453), and it fell through to one-cycle ramps: 4.5·10^15
+/// cycles, whose cruise wrapped the schedule's laps. With one unit's area more (its cruise kept)
+/// the remainder lands where the ranges overlap. Every start in the band around it, and the
+/// move stepped to its end, within 3 cycles of the continuous optimum and exact.
+#[test]
+fn a_remainder_between_the_notch_pairs_reach_takes_a_unit_more() {
+    let p = ScurveParameters {
+        destination: 1 << 20,
+        max_velocity: MaxVelocity::from_bits(262_143).unwrap(),
+        max_acceleration: ScurveAcceleration::from_bits(29_842).unwrap(),
+        jerk: Jerk::from_bits(1).unwrap(),
+    };
+    let target = i64::from(p.destination) << 32;
+    for start in (20_956_500..20_960_500)
+        .step_by(7)
+        .chain([133_824_512, 149_569_536])
+    {
+        let axis = SCurve::with_position(p, I32F32::from_bits(start)).unwrap();
+        let distance = (target - start) as f64 / 4_294_967_296.0;
+        let best = optimum(&p, distance);
+        let total = axis.duration();
+        assert!(
+            total as f64 <= best + 3.0,
+            "from {start}: {total} cycles, optimum {best}"
+        );
+    }
+    let mut axis = SCurve::with_position(p, I32F32::from_bits(20_958_500)).unwrap();
+    let total = axis.duration();
+    let states = run_move(&mut axis).unwrap();
+    assert_eq!(states.len() as u64, total);
+    assert_eq!(
+        *states.last().unwrap(),
+        State::at_rest(I32F32::from_bits(target))
+    );
+}
+
 /// A maximum velocity that the slowest ramps could not reach in whole raw units at the
 /// acceleration limit (V = 16 raw, A = 3 raw, J = 65,536 raw: the peak acceleration is 3J, and no
 /// mix of units with ramps (3, 6), (3, 5), (2, 6), (2, 5) at 3J meets 16·2^16 exactly) is met

@@ -30,8 +30,8 @@
 //! Planning takes a bounded number of integer operations, the same on every target (no floating
 //! point): at most eight shapes, each solved in closed form, a fixed number of notch-pair
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
-//! checked). Measured (see the README for the commands): 9,902 Cortex-M4 instructions median,
-//! 16,995 at worst over the first 1,000 random moves (20,449 over 5,000: a move of 14 cycles
+//! checked). Measured (see the README for the commands): 9,936 Cortex-M4 instructions median,
+//! 17,045 at worst over the first 1,000 random moves (20,575 over 5,000: a move of 14 cycles
 //! with a huge jerk, whose first candidates fail); on the x86
 //! development machine a few hundred nanoseconds median, under about 2 µs at worst. Moves the
 //! shapes near the optimum cannot finish (mostly from fractional positions with a jerk of a few
@@ -251,7 +251,9 @@ impl SCurve {
     /// [`Error::OutOfRange`] for a destination outside −2³⁰ … 2³⁰ − 1 counts (the MC1451A
     /// register); [`Error::Zero`] for a zero maximum velocity, maximum acceleration or jerk;
     /// [`Error::Unreachable`] for a destination 2^-32 counts away with a jerk of 2^-32
-    /// counts/cycle³, the one distance no jerk-limited move can cover.
+    /// counts/cycle³, the one distance no jerk-limited move can cover; also, were the planner
+    /// to find no plan whose runs its schedule holds (none is known: its last resort, ramps of
+    /// one cycle, fits any other distance within 2^48 cycles of cruise), for that move.
     pub fn new(parameters: ScurveParameters) -> Result<Self, Error> {
         Self::with_position(parameters, I32F32::ZERO)
     }

@@ -423,7 +423,8 @@ const WIDTH_TRIES: u64 = 1;
 /// after phase V; both in the cruise), one pair of width 1 or 2 for a small remainder, else (not
 /// in the cruise alone) two pairs of widths `w` and `w + 1` for a few `w`: the estimate
 /// `left / (2·span + 1)` and one below it, and half and all of the first ramp (where short moves
-/// have room).
+/// have room). With `with_unit`, the widths are estimated for `left + area` instead (a second
+/// search's, after the first found nothing).
 pub(super) fn take(
     left: u64,
     main: &MainMove,
@@ -431,6 +432,7 @@ pub(super) fn take(
     placed: &mut Placement,
     jerk_limit: u64,
     (area, available): (u64, u64),
+    with_unit: bool,
 ) -> Option<u64> {
     if left == 0 {
         return Some(0);
@@ -450,6 +452,15 @@ pub(super) fn take(
         jerk_limit,
         area,
         available,
+        // Where the remainder alone is small beside the spans, the sums of two pairs near the
+        // estimate, (2w + 1)·[K − w, K + w] for spans around K, leave gaps between consecutive
+        // w that no cruise length closes (with a jerk of one raw unit there is one unit, and no
+        // other way to change the remainder); one unit's area more lands it where they overlap.
+        estimated: if with_unit && available > 0 {
+            left.saturating_add(area)
+        } else {
+            left
+        },
     };
     if bounds.total < 1 << 31 {
         remainder.take_in::<u32>(placed)
@@ -467,6 +478,9 @@ struct Remainder<'a> {
     jerk_limit: u64,
     area: u64,
     available: u64,
+    /// What the widths of two pairs are estimated for: `left`, or with `with_unit` (see
+    /// [`take`]) `left + area`.
+    estimated: u64,
 }
 
 impl Remainder<'_> {
@@ -474,6 +488,7 @@ impl Remainder<'_> {
     /// of two).
     fn take_in<C: Cycle>(&self, placed: &mut Placement) -> Option<u64> {
         let (left, bounds, area, available) = (self.left, self.bounds, self.area, self.available);
+        let estimated = self.estimated;
         let (main, jerk_limit) = (self.main, self.jerk_limit);
         let mut try_fit = |pairs: &[Notch]| placed.try_add(pairs, main, bounds, jerk_limit);
         // The three placements that take remainders (measured over 100,000 random moves: first
@@ -525,9 +540,9 @@ impl Remainder<'_> {
                     return width;
                 }
                 let middle = (range.0 / 2 + range.1 / 2).max(1);
-                div(left, middle.saturating_mul(2).saturating_add(1)).max(1)
+                div(estimated, middle.saturating_mul(2).saturating_add(1)).max(1)
             };
-            let guess = refine(refine(div(left, bounds.total.max(1)).max(1)));
+            let guess = refine(refine(div(estimated, bounds.total.max(1)).max(1)));
             // And half and all of the first ramp, where short moves have room.
             let ramp = bounds.last_rise_start;
             let around = guess.saturating_sub(1).max(1)..guess + WIDTH_TRIES;
@@ -661,6 +676,7 @@ mod tests {
             early in proptest::array::uniform4(0u64..2),
             share in 0u64..1_000_000,
             (area, available) in (0u64..5_000, 0u64..4),
+            with_unit in any::<bool>(),
         ) {
             prop_assume!(counts.iter().sum::<u64>() > 0 && a > 1);
             let b = a + longer;
@@ -687,6 +703,7 @@ mod tests {
                 jerk_limit: 4,
                 area,
                 available,
+                estimated: if with_unit { left + area } else { left },
             };
             let (mut narrow, mut wide) = (Placement::default(), Placement::default());
             prop_assert_eq!(

@@ -9,7 +9,7 @@
 //! very short moves with a large jerk that notch pairs have no room in.
 
 use super::remainder::{self, velocity_notch, Placement};
-use super::schedule::{Limits64, Schedule};
+use super::schedule::{Limits64, Schedule, LONGEST_RUN};
 use super::shape::{MainMove, Mix};
 use crate::division::{div, div_ceil, div_rem};
 
@@ -289,9 +289,44 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
         distance,
         direction,
         limits,
+        with_unit: false,
     };
     let mut found = [Shape::default(); MAX_SHAPES];
     let len = shapes(distance, limits, &mut found);
+    let mut planned = fastest_fit(&move_, &found[..len], out);
+    // Moves of a few cycles with a large jerk can be too short for notch pairs: there, two
+    // units of the jerk kept aside take the rest as fine units — tried if no shape fit, or if
+    // only a slower one did in a short move (planned aside, the faster kept).
+    let fastest = found[..len].first().map_or(u64::MAX, |shape| shape.cycles);
+    let short = fastest < SHORT_MOVE;
+    if limits.jerk > 2 && (!planned || (short && out.plan.total > fastest + 1)) {
+        let mut fine = Schedule::EMPTY;
+        if with_fine_units(&move_, &mut fine) && (!planned || fine.plan.total < out.plan.total) {
+            *out = fine;
+            planned = true;
+        }
+    }
+    // Then the same shapes with the notch pairs' widths for a remainder grown by a unit's area
+    // too ([`Move::with_unit`]): only after the ramps around the optimum, so that every move
+    // planned without them keeps its plan (and its cost), and before the one-cycle ramps.
+    planned
+        || around(&move_, out)
+        || fastest_fit(
+            &Move {
+                with_unit: true,
+                ..move_
+            },
+            &found[..len],
+            out,
+        )
+        || one_cycle_ramps(&move_, out)
+}
+
+/// The first of `found` (fastest first) whose remainder fits, into `out`: each shape's
+/// candidates at their own cruise and one cycle more (`false` if none fits).
+fn fastest_fit(move_: &Move, found: &[Shape], out: &mut Schedule) -> bool {
+    let (distance, limits) = (move_.distance, move_.limits);
+    let len = found.len();
     let mut planned = false;
     // Candidates tried at their own cruise already, ahead of their turn: bit 2·shape + index.
     let mut tried = 0u16;
@@ -316,7 +351,7 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
                 continue;
             };
             if tried & (1 << (2 * i + k)) == 0
-                && complete_once(candidate, candidate.c, &move_, out, &mut failed)
+                && complete_once(candidate, candidate.c, move_, out, &mut failed)
             {
                 planned = true;
                 break 'shapes;
@@ -342,32 +377,20 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
                             continue;
                         }
                         tried |= bit;
-                        if complete_once(early, early.c, &move_, out, &mut failed) {
+                        if complete_once(early, early.c, move_, out, &mut failed) {
                             planned = true;
                             break 'shapes;
                         }
                     }
                 }
             }
-            if complete_once(candidate, candidate.c + 1, &move_, out, &mut failed) {
+            if complete_once(candidate, candidate.c + 1, move_, out, &mut failed) {
                 planned = true;
                 break 'shapes;
             }
         }
     }
-    // Moves of a few cycles with a large jerk can be too short for notch pairs: there, two
-    // units of the jerk kept aside take the rest as fine units — tried if no shape fit, or if
-    // only a slower one did in a short move (planned aside, the faster kept).
-    let fastest = found[..len].first().map_or(u64::MAX, |shape| shape.cycles);
-    let short = fastest < SHORT_MOVE;
-    if limits.jerk > 2 && (!planned || (short && out.plan.total > fastest + 1)) {
-        let mut fine = Schedule::EMPTY;
-        if with_fine_units(&move_, &mut fine) && (!planned || fine.plan.total < out.plan.total) {
-            *out = fine;
-            planned = true;
-        }
-    }
-    planned || around(&move_, out) || one_cycle_ramps(&move_, out)
+    planned
 }
 
 /// Plans a move whose maximum velocity is reached in one cycle (`V ≤ min(J, A)`) into `out`:
@@ -387,6 +410,7 @@ pub(super) fn at_velocity_in_one_cycle(
                 distance,
                 direction,
                 limits,
+                with_unit: false,
             },
             out,
         )
@@ -425,6 +449,9 @@ struct Move {
     distance: u64,
     direction: i64,
     limits: Limits64,
+    /// Whether [`remainder::take`] also tries the widths for the remainder with one unit given
+    /// back (its cruise kept), after the usual ones.
+    with_unit: bool,
 }
 
 /// The early units of `mix` with phase V from cycle `c` that take the most of `over` (2^-32
@@ -494,6 +521,7 @@ fn complete(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule) -> 
         &mut placement,
         jerk,
         (area, available),
+        move_.with_unit,
     ) else {
         return false;
     };
@@ -675,6 +703,12 @@ fn one_cycle_ramps(move_: &Move, out: &mut Schedule) -> bool {
     let (distance, limits) = (move_.distance, move_.limits);
     let most = limits.jerk.min(limits.acceleration).min(limits.velocity);
     let first = distance.div_ceil(most).max(2);
+    // A cruise too long for the schedule's runs (a velocity under 2^-16 counts/cycle, only
+    // reached here when the jerk or the acceleration is below it and no other shape fit) is
+    // refused: the move then gets a typed error, not a plan whose laps wrap.
+    if first + 1 >= LONGEST_RUN {
+        return false;
+    }
     for c in first..first + 2 {
         let units = distance.div_ceil(c);
         let over = units * c - distance;
