@@ -35,7 +35,8 @@
 //! with a huge jerk, whose first candidates fail); on the x86
 //! development machine a few hundred nanoseconds median, under about 2 µs at worst. Moves the
 //! shapes near the optimum cannot finish (mostly from fractional positions with a jerk of a few
-//! raw units) try up to 24 more pairs of ramps around it first, which costs more. A step is at
+//! raw units) try up to 24 more pairs of ramps around it, then the same shapes with one unit's
+//! area more in the remainder, which costs more. A step is at
 //! most 33 Cortex-M4 instructions (36 on the cycles after an abrupt stop), 18 on x86.
 
 mod predict;

@@ -6,7 +6,10 @@
 //! first, so usually one), two cruise lengths and two unit mixes per shape, for each a fixed
 //! number of notch-pair placements ([`super::remainder::take`]); the schedule is built once, for
 //! the plan that wins. A last resort (two *fine units*, then ramps of one cycle) covers the few
-//! very short moves with a large jerk that notch pairs have no room in.
+//! very short moves with a large jerk that notch pairs have no room in; before the ramps of one
+//! cycle, the ramps around the optimum ([`around`]), then the same shapes once more with the
+//! pairs' widths estimated for the remainder plus one unit's area ([`Move::with_unit`]), which
+//! closes the gaps between what two pairs take when the jerk leaves a single unit.
 
 use super::remainder::{self, velocity_notch, Placement};
 use super::schedule::{Limits64, Schedule, LONGEST_RUN};
