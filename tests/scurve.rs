@@ -508,7 +508,7 @@ fn ramps_around_the_optimum_before_one_cycle_ramps() {
 /// counts from 20,958,500 raw units past a count (found by the fuzzer, in an interpolation
 /// restarted after a stop) has a remainder of 20,696,356 in such a gap (w = 38: up to
 /// 20,188,168; w = 39: from 20,706,453), and it fell through to one-cycle ramps: 4.5·10^15
-/// cycles, whose cruise wrapped the schedule's laps. With one unit's area more (its cruise kept)
+/// cycles, whose cruise saturated the schedule's laps. With one unit's area more (its cruise kept)
 /// the remainder lands where the ranges overlap. Every start in the band around it, and the
 /// move stepped to its end, within 3 cycles of the continuous optimum and exact.
 #[test]

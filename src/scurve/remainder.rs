@@ -445,6 +445,10 @@ pub(super) fn take(
     if left >= bounds.total.saturating_mul(bounds.total) / 2 {
         return None;
     }
+    // With no unit to give back, the second search's call is the first search's, which failed.
+    if with_unit && (area == 0 || available == 0) {
+        return None;
+    }
     let remainder = Remainder {
         left,
         main,
@@ -452,20 +456,25 @@ pub(super) fn take(
         jerk_limit,
         area,
         available,
-        // Where the remainder alone is small beside the spans, the sums of two pairs near the
-        // estimate, (2w + 1)·[K − w, K + w] for spans around K, leave gaps between consecutive
-        // w that no cruise length closes (with a jerk of one raw unit there is one unit, and no
-        // other way to change the remainder); one unit's area more lands it where they overlap.
-        estimated: if with_unit && available > 0 {
-            left.saturating_add(area)
-        } else {
-            left
-        },
+        estimated: estimated(left, area, with_unit),
     };
     if bounds.total < 1 << 31 {
         remainder.take_in::<u32>(placed)
     } else {
         remainder.take_in::<u64>(placed)
+    }
+}
+
+/// What [`take`] estimates the widths of two pairs for: `left`, or with `with_unit` one unit's
+/// `area` more. Where the remainder alone is small beside the spans, the sums of two pairs near
+/// the estimate, (2w + 1)·[K − w, K + w] for spans around K, leave gaps between consecutive w
+/// that no cruise length closes (with a jerk of one raw unit there is one unit, and no other way
+/// to change the remainder); one unit's area more lands it where they overlap.
+fn estimated(left: u64, area: u64, with_unit: bool) -> u64 {
+    if with_unit {
+        left.saturating_add(area)
+    } else {
+        left
     }
 }
 
@@ -478,8 +487,7 @@ struct Remainder<'a> {
     jerk_limit: u64,
     area: u64,
     available: u64,
-    /// What the widths of two pairs are estimated for: `left`, or with `with_unit` (see
-    /// [`take`]) `left + area`.
+    /// What the widths of two pairs are estimated for ([`estimated`]).
     estimated: u64,
 }
 
@@ -703,7 +711,7 @@ mod tests {
                 jerk_limit: 4,
                 area,
                 available,
-                estimated: if with_unit { left + area } else { left },
+                estimated: estimated(left, area, with_unit),
             };
             let (mut narrow, mut wide) = (Placement::default(), Placement::default());
             prop_assert_eq!(

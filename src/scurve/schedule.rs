@@ -152,7 +152,7 @@ const _: () = assert!(AFTER_ABRUPT_REST < LAPS);
 
 /// A run is shorter than this many cycles: its count and 16 bits of laps of 2^32 (see [`Run`]).
 /// Every run of a plan at a velocity of at least 2^-16 counts/cycle is; the planner refuses a
-/// plan with a longer one rather than let its laps wrap.
+/// plan with a longer one rather than let its laps saturate (and its cruise fall short).
 pub(super) const LONGEST_RUN: u64 = 1 << 48;
 
 /// At most this many changes of the main move (see [`MAX_CHANGES`]): 20 with notch pairs, 30

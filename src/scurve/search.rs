@@ -452,8 +452,8 @@ struct Move {
     distance: u64,
     direction: i64,
     limits: Limits64,
-    /// Whether [`remainder::take`] also tries the widths for the remainder with one unit given
-    /// back (its cruise kept), after the usual ones.
+    /// Whether [`remainder::take`] estimates the widths of two pairs for the remainder with one
+    /// unit given back (its cruise kept) instead of the remainder alone: the second search's.
     with_unit: bool,
 }
 
@@ -707,8 +707,8 @@ fn one_cycle_ramps(move_: &Move, out: &mut Schedule) -> bool {
     let most = limits.jerk.min(limits.acceleration).min(limits.velocity);
     let first = distance.div_ceil(most).max(2);
     // A cruise too long for the schedule's runs (a velocity under 2^-16 counts/cycle, only
-    // reached here when the jerk or the acceleration is below it and no other shape fit) is
-    // refused: the move then gets a typed error, not a plan whose laps wrap.
+    // reached here when the jerk is below it and no other shape fit) is refused: the move then
+    // gets a typed error, not a plan whose laps saturate and cut the cruise short.
     if first + 1 >= LONGEST_RUN {
         return false;
     }
