@@ -31,6 +31,7 @@ from __future__ import annotations
 import argparse
 import bisect
 import os
+import random
 import statistics
 import struct
 import sys
@@ -405,6 +406,30 @@ def measure_planning(probe: Probe, first: int, n: int) -> list[tuple[int, int, t
             raise ProbeFailure(f"move {index} was refused: {describe_move(move)}")
         results.append((index, call.instructions, move, call.u64))
     return results
+
+
+def measure_sub_count(probe: Probe, n: int, top: int, seed: int = 17) -> None:
+    """Counts `probe_plan_sub_count` on `n` random moves of the class `pure_jerk` plans: a jerk of
+    1 to 15 raw units, a distance log-uniform over 2 .. 2^17 raw units to a fractional position,
+    the velocity and acceleration registers log-uniform over their ranges."""
+    rng = random.Random(seed)
+    print(f"== planning from fractional positions: probe_plan_sub_count over {n} moves (seed {seed})")
+    results = []
+    for _ in range(n):
+        distance = max(2, int(2 ** rng.uniform(1, 17)))
+        velocity = max(1, int(2 ** rng.uniform(0, 30)))
+        acceleration = max(1, int(2 ** rng.uniform(0, 15)))
+        jerk = rng.randint(1, 15)
+        call = probe.call("probe_plan_sub_count", distance, velocity, acceleration, jerk)
+        if call.u64 == REFUSED:
+            raise ProbeFailure(f"refused: {distance} raw units, V {velocity}, A {acceleration}, J {jerk}")
+        results.append((call.instructions, distance, velocity, acceleration, jerk, call.u64))
+    counts = sorted(r[0] for r in results)
+    print(f"  instructions: p50 {percentile(counts, 50)}, p99 {percentile(counts, 99)}, "
+          f"worst {counts[-1]}, mean {statistics.fmean(counts):.0f}")
+    for n_, distance, velocity, acceleration, jerk, total in sorted(results, key=lambda r: -r[0])[:top]:
+        print(f"    {n_} instructions: {distance} raw units, V {velocity}, A {acceleration}, J {jerk}; "
+              f"{total} cycles")
 
 
 # Stepping ----------------------------------------------------------------------------------------
@@ -1097,6 +1122,10 @@ def main() -> int:
                              "counted (reported; default %(default)s)")
     parser.add_argument("--command-moves", type=int, default=300,
                         help="random trapezoid moves given commands in motion (default %(default)s)")
+    parser.add_argument("--sub-count-moves", type=int, default=0,
+                        help="random moves of under 2^17 raw units with a jerk of 1 to 15 raw units, from "
+                             "fractional positions (what stops leave), whose plan is counted (reported; "
+                             "default %(default)s)")
     parser.add_argument("--functions", type=int, default=8,
                         help="functions listed for the worst plan (default %(default)s)")
     parser.add_argument("--top", type=int, default=5, help="the most expensive plans listed (default 5)")
@@ -1141,6 +1170,8 @@ def main() -> int:
             print(f"    {n:10} {100 * n / worst[1]:5.1f}%  {function}")
 
         print(f"  ({time.monotonic() - planning_started:.1f} s)")
+        if args.sub_count_moves:
+            measure_sub_count(probe, args.sub_count_moves, args.top)
         print("== stepping: probe_step, one call per cycle")
         stepping_started = time.monotonic()
         per_phase: list[list[int]] = [[], [], [], []]

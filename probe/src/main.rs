@@ -110,6 +110,25 @@ pub extern "C" fn probe_plan_bits(
     plan(destination, velocity, acceleration, jerk)
 }
 
+/// As [`probe_plan_bits`], for a move of `distance` raw units (2^-32 counts, `distance ≥ 1`) to
+/// count 7 from the fractional position it leaves: the moves a stop leaves to plan (the
+/// planner's `pure_jerk` plans many of them). Returns the total cycle count.
+#[no_mangle]
+pub extern "C" fn probe_plan_sub_count(
+    distance: u32,
+    velocity: u32,
+    acceleration: u32,
+    jerk: u32,
+) -> u64 {
+    let start = profilegen::fixed::types::I32F32::from_bits((7i64 << 32) - i64::from(distance));
+    match &parameters(7, velocity, acceleration, jerk)
+        .and_then(|parameters| SCurve::with_position(parameters, start))
+    {
+        Ok(axis) => black_box(axis).duration(),
+        Err(_) => REFUSED,
+    }
+}
+
 /// As [`probe_plan_bits`] for move `index` of `moves.rs`, generated here.
 #[no_mangle]
 pub extern "C" fn probe_plan(index: u32) -> u64 {
