@@ -11,6 +11,8 @@
 //!   that meets the maximum acceleration and velocity to the raw unit;
 //! - [`remainder`]: the notch pairs that take the last of the distance, and the Diophantine
 //!   solver that sizes them;
+//! - [`pure_jerk`]: moves where only the jerk binds (a few dozen cycles with a jerk of a few raw
+//!   units, mostly what a stop leaves), whose notch pairs go wherever the jerk has room;
 //! - [`schedule`]: the sorted jerk changes, built once for the winner, and the pass that finds
 //!   its peaks;
 //! - [`stop`]: the jerk-limited smooth stop.
@@ -23,23 +25,27 @@
 //!
 //! Every plan is within 3 cycles of the continuous-time optimum
 //! ([`crate::reference::scurve_duration`]): over 40,000,000 random moves across the register
-//! ranges the worst was +2.91 cycles and the mean +0.93. The integer plan may keep a cycle or two
+//! ranges the worst was +2.91 cycles and the mean +0.93; over 3,000,000 moves of under 2^17 raw
+//! units with a jerk of 1 to 15 raw units from fractional positions (where stops leave an axis)
+//! the worst was +2.9993. The integer plan may keep a cycle or two
 //! of constant acceleration below the maximum (phases II/VI) where the continuous optimum has
 //! none; [`ScurvePlan::phases`] reports the phases of the move's main units as they are.
 //!
 //! Planning takes a bounded number of integer operations, the same on every target (no floating
 //! point): at most eight shapes, each solved in closed form, a fixed number of notch-pair
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
-//! checked). Measured (see the README for the commands): 9,946 Cortex-M4 instructions median,
-//! 17,048 at worst over the first 1,000 random moves (20,520 over 5,000: a move of 14 cycles
+//! checked). Measured (see the README for the commands): 9,968 Cortex-M4 instructions median,
+//! 17,321 at worst over the first 1,000 random moves (20,650 over 5,000: a move of 14 cycles
 //! with a huge jerk, whose first candidates fail); on the x86
 //! development machine a few hundred nanoseconds median, under about 2 µs at worst. Moves the
 //! shapes near the optimum cannot finish (mostly from fractional positions with a jerk of a few
-//! raw units) try up to 24 more pairs of ramps around it, then the same shapes with one unit's
-//! area more in the remainder, which costs more. A step is at
+//! raw units) are planned by [`pure_jerk`] where only the jerk binds, else try up to 24 more
+//! pairs of ramps around it, then the same shapes with one unit's area more in the remainder,
+//! which costs more (up to about 90,000 Cortex-M4 instructions for such moves). A step is at
 //! most 33 Cortex-M4 instructions (36 on the cycles after an abrupt stop), 18 on x86.
 
 mod predict;
+mod pure_jerk;
 mod remainder;
 mod schedule;
 mod search;

@@ -703,7 +703,7 @@ mod tests {
                 c: 21845,
             },
         ];
-        let main = MainMove::from_groups(&groups);
+        let main = MainMove::of_groups(&groups);
         let placement = Placement::default()
             .with(Notch {
                 start: 360,

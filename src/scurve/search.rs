@@ -6,11 +6,14 @@
 //! first, so usually one), two cruise lengths and two unit mixes per shape, for each a fixed
 //! number of notch-pair placements ([`super::remainder::take`]); the schedule is built once, for
 //! the plan that wins. A last resort (two *fine units*, then ramps of one cycle) covers the few
-//! very short moves with a large jerk that notch pairs have no room in; before the ramps of one
-//! cycle, the ramps around the optimum ([`around`]), then the same shapes once more with the
-//! pairs' widths estimated for the remainder plus one unit's area ([`Move::with_unit`]), which
-//! closes the gaps between what two pairs take when the jerk leaves a single unit.
+//! very short moves with a large jerk that notch pairs have no room in. Where only the jerk binds
+//! and the plan is more than three cycles over the optimum, or missing, [`super::pure_jerk`]
+//! places notch pairs wherever the jerk has room. Before the ramps of one cycle, the ramps around
+//! the optimum ([`around`]), then the same shapes once more with the pairs' widths estimated for
+//! the remainder plus one unit's area ([`Move::with_unit`]), which closes the gaps between what
+//! two pairs take when the jerk leaves a single unit.
 
+use super::pure_jerk;
 use super::remainder::{self, velocity_notch, Placement};
 use super::schedule::{Limits64, Schedule, LONGEST_RUN};
 use super::shape::{MainMove, Mix};
@@ -309,11 +312,16 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
             planned = true;
         }
     }
+    // Where only the jerk binds and the plan is more than three cycles over the optimum, or
+    // missing: notch pairs wherever the jerk has room ([`pure_jerk`]); it keeps a plan it cannot
+    // better.
+    if pure_jerk::improve(distance, direction, limits, planned, out) {
+        return true;
+    }
     // Then the same shapes with the notch pairs' widths for a remainder grown by a unit's area
     // too ([`Move::with_unit`]): only after the ramps around the optimum, so that every move
     // planned without them keeps its plan (and its cost), and before the one-cycle ramps.
-    planned
-        || around(&move_, out)
+    around(&move_, out)
         || fastest_fit(
             &Move {
                 with_unit: true,

@@ -110,8 +110,8 @@ impl MainMove {
         self
     }
 
-    #[cfg(test)]
-    pub fn from_groups(groups: &[Group]) -> Self {
+    /// The move of `groups` (those without a unit left out).
+    pub fn of_groups(groups: &[Group]) -> Self {
         let mut m = Self::default();
         for &g in groups {
             m.push(g);

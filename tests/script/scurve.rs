@@ -331,19 +331,6 @@ impl Scripted for SCurve {
                 super::excluded();
                 return Ok(());
             }
-            // KNOWN (issue #11, open), the same class from its other side: sub-count moves
-            // (under 2^17 raw units, 2^-15 counts) with a jerk under 16 raw units, where the
-            // planner's shapes and notch pairs miss the optimum by more (a scan of 3,000,000
-            // such moves: 0.3 % over +4 cycles, the worst +25.5, never more than 1.56 times the
-            // optimum; for the planning bench's such moves under 700 raw units the exhaustive
-            // search of tests/scurve_exhaustive.rs finds plans within +1.7). A fuzzer found one
-            // in CI (distance 41 raw, jerk 1: 15 cycles, where 12 do; fuzz/seeds keeps it).
-            // Held to twice the optimum and 4 cycles, and counted.
-            let tiny = distance.unsigned_abs() < 1 << 17 && parameters.jerk.to_bits() < 16;
-            if tiny && self.duration() as f64 <= 2.0 * floor + 4.0 {
-                super::excluded();
-                return Ok(());
-            }
             return Err(format!(
                 "planned {} cycles, the optimum is {optimum:.3}: {parameters:?}, {plan:?}",
                 self.duration()
