@@ -54,15 +54,13 @@ pub(super) fn improve(
     planned: bool,
     out: &mut Schedule,
 ) -> bool {
-    // 32·D < LONGEST³·J, by multiplications alone: most moves leave here.
-    let Some(scaled) = distance.checked_mul(32) else {
+    // By multiplications alone: most moves leave here.
+    let Some(scaled) = scaled_distance(distance, limits.jerk) else {
         return planned;
     };
-    if jerk_cube_limit(limits.jerk).is_none_or(|limit| scaled >= limit) {
-        return planned;
-    }
-    // Within the bound already, by multiplications (no cube root): `total ≤ ⌊∛(32·D/J)⌋ + 3`
-    // exactly when `(total − 3)³·J ≤ 32·D`.
+    // Within the bound already, by multiplications (no cube root): `total ≤ ⌊∛(32·D/J)⌋ + 3`,
+    // and the optimum is at least that floor (the limits can only lengthen it), exactly when
+    // `(total − 3)³·J ≤ 32·D`.
     if planned {
         let least = out.plan.total.saturating_sub(3);
         let within = least
@@ -74,15 +72,11 @@ pub(super) fn improve(
             return true;
         }
     }
-    let Some(floor) = optimum_floor(distance, limits) else {
+    let Some(floor) = optimum_floor(scaled, distance, limits) else {
         return planned;
     };
-    // The optimum is at least `floor` (the limits can only lengthen it), so a plan within
-    // `floor + 3` cycles is within the bound already.
+    // Only plans faster than the one there is (over `floor + 3` cycles, see above).
     let longest = if planned {
-        if out.plan.total <= floor + 3 {
-            return true;
-        }
         out.plan.total - 1
     } else {
         u64::MAX
@@ -99,17 +93,20 @@ pub(super) fn improve(
     planned
 }
 
-/// `⌊4·∛(D/2J)⌋ = ⌊∛(32·D/J)⌋`, the floor of the continuous optimum when only the jerk binds, if
-/// the move is one this module plans: that optimum under [`LONGEST`] cycles, and every
-/// candidate's peaks (at most `J·⌊N/4⌋ + 2` acceleration and `J·⌊N²/16⌋` velocity for `N`
-/// cycles, as `a ≤ N/4` and `a + b ≤ N/2`) within the limits.
-fn optimum_floor(distance: u64, limits: Limits64) -> Option<u64> {
-    let jerk = limits.jerk;
+/// `32·D`, if below `LONGEST³·J`: the continuous optimum when only the jerk binds,
+/// `4·∛(D/2J) = ∛(32·D/J)` cycles, is then under [`LONGEST`].
+fn scaled_distance(distance: u64, jerk: u64) -> Option<u64> {
     let scaled = distance.checked_mul(32)?;
-    if scaled >= jerk_cube_limit(jerk)? {
-        return None;
-    }
-    // Then, before the cube root, a necessary condition by multiplications: the peak
+    (scaled < jerk.checked_mul(LONGEST * LONGEST * LONGEST)?).then_some(scaled)
+}
+
+/// `⌊4·∛(D/2J)⌋ = ⌊∛(32·D/J)⌋` from `scaled` = [`scaled_distance`], the floor of the continuous
+/// optimum when only the jerk binds, if the move is one this module plans: every candidate's
+/// peaks (at most `J·⌊N/4⌋ + 2` acceleration and `J·⌊N²/16⌋` velocity for `N` cycles, as
+/// `a ≤ N/4` and `a + b ≤ N/2`) within the limits.
+fn optimum_floor(scaled: u64, distance: u64, limits: Limits64) -> Option<u64> {
+    let jerk = limits.jerk;
+    // First, before the cube root, a necessary condition by multiplications: the peak
     // acceleration required below exceeds `J·∛(32·D/J)/4 = ∛(D·J²/2)`, so `2·A³ > D·J²` (most
     // moves whose plan is long for their distance leave here: they reach the acceleration limit).
     let acceleration = limits.acceleration;
@@ -128,11 +125,6 @@ fn optimum_floor(distance: u64, limits: Limits64) -> Option<u64> {
     let peak_acceleration = jerk.checked_mul(cycles / 4)?.checked_add(2)?;
     let peak_velocity = jerk.checked_mul(cycles * cycles / 16)?;
     (peak_acceleration <= limits.acceleration && peak_velocity <= limits.velocity).then_some(floor)
-}
-
-/// `LONGEST³·J`: a move is one for here only if `32·D` is below it.
-fn jerk_cube_limit(jerk: u64) -> Option<u64> {
-    jerk.checked_mul(LONGEST * LONGEST * LONGEST)
 }
 
 /// The first plan found, fewest cycles first, with a cycle count in `counts`, into `out`.
@@ -359,8 +351,8 @@ impl Profile {
             (self.limits.jerk as i64, self.limits.acceleration as i64);
         let mut impulses = [(0i32, 0i64); 8];
         let mut len = 0;
-        for &(s, w, k) in pairs {
-            for impulse in [(s, -1), (s + w, 1), (s + k, 1), (s + k + w, -1)] {
+        for &pair in pairs {
+            for impulse in impulses_of(pair) {
                 impulses[len] = impulse;
                 len += 1;
             }
@@ -434,12 +426,6 @@ impl Fit {
             self.starts.0.max(self.raises.0 - k),
             self.starts.1.min(self.raises.1 - k),
         )
-    }
-
-    /// The first and the last start of a pair of span `k`, as a list.
-    fn starts(&self, k: i32) -> [i32; 2] {
-        let (first, last) = self.range(k);
-        [first, last]
     }
 }
 
@@ -549,7 +535,8 @@ impl Profile {
                 if k < lo || k > hi {
                     continue;
                 }
-                for start in fit.starts(k) {
+                let (first, last) = fit.range(k);
+                for start in [first, last] {
                     if *checks >= MAX_CHECKS {
                         return None;
                     }
@@ -578,7 +565,7 @@ impl Profile {
                             let k2 = left / w2;
                             let (from1, to1) = first.range(k1);
                             let (from2, to2) = second.range(k2);
-                            let starts = if apart {
+                            let (starts, count) = if apart {
                                 // Starts whose impulses fall on distinct cycles: each has the
                                 // room its interval gives it.
                                 let found = (from1..=to1.min(from1 + 3)).find_map(|s1| {
@@ -589,11 +576,11 @@ impl Profile {
                                 let Some(found) = found else {
                                     continue;
                                 };
-                                [found; 4]
+                                ([found; 4], 1)
                             } else {
-                                [(from1, to2), (from1, from2), (to1, to2), (to1, from2)]
+                                ([(from1, to2), (from1, from2), (to1, to2), (to1, from2)], 4)
                             };
-                            for &(s1, s2) in &starts[..if apart { 1 } else { 4 }] {
+                            for &(s1, s2) in &starts[..count] {
                                 if *checks >= MAX_CHECKS {
                                     return None;
                                 }
@@ -621,12 +608,17 @@ fn placement(pairs: &[Pair]) -> Placement {
     placement
 }
 
-/// Whether two pairs `(start, width, span)` have their impulses on distinct cycles.
-fn distinct((s1, w1, k1): Pair, (s2, w2, k2): Pair) -> bool {
-    let first = [s1, s1 + w1, s1 + k1, s1 + k1 + w1];
-    [s2, s2 + w2, s2 + k2, s2 + k2 + w2]
+/// A pair's jerk impulses `(cycle, ±1)` (as [`Notch::impulses`], in this module's cycles).
+fn impulses_of((s, w, k): Pair) -> [(i32, i64); 4] {
+    [(s, -1), (s + w, 1), (s + k, 1), (s + k + w, -1)]
+}
+
+/// Whether two pairs have their impulses on distinct cycles.
+fn distinct(first: Pair, second: Pair) -> bool {
+    let first = impulses_of(first);
+    impulses_of(second)
         .iter()
-        .all(|cycle| !first.contains(cycle))
+        .all(|(cycle, _)| first.iter().all(|(other, _)| other != cycle))
 }
 
 /// `⌈n/d⌉` for `d > 0`.
@@ -673,9 +665,12 @@ mod tests {
     /// `⌊∛(32·D/J)⌋` against its definition, and `None` where the move leaves the class.
     #[test]
     fn the_floor_of_the_optimum() {
+        let floor = |distance: u64, limits: Limits64| {
+            optimum_floor(scaled_distance(distance, limits.jerk)?, distance, limits)
+        };
         for jerk in [1u64, 2, 3, 7, 15] {
             for distance in (2..3_000u64).step_by(7) {
-                let floor = optimum_floor(distance, wide(jerk)).unwrap();
+                let floor = floor(distance, wide(jerk)).unwrap();
                 let x = 32 * distance / jerk;
                 assert!(
                     floor.pow(3) <= x && (floor + 1).pow(3) > x,
@@ -684,13 +679,14 @@ mod tests {
             }
         }
         // 32·D ≥ 128³·J: too long for this module.
-        assert_eq!(optimum_floor(65_536, wide(1)), None);
+        assert_eq!(scaled_distance(65_536, 1), None);
+        assert_eq!(scaled_distance(65_535, 1), Some(32 * 65_535));
         // The acceleration limit binds (2·A³ ≤ D·J²).
         let binding = Limits64 {
             acceleration: 3,
             ..wide(1)
         };
-        assert_eq!(optimum_floor(1_000, binding), None);
+        assert_eq!(floor(1_000, binding), None);
     }
 
     /// Every distance from 4 to 3,000 raw units with a jerk of 1 (and a sample with 2 to 5):
@@ -701,7 +697,8 @@ mod tests {
         for (jerk, step) in [(1u64, 1usize), (2, 5), (3, 7), (5, 11)] {
             // From 4J: shorter moves are a pulse of one cycle (`plan_move`), or have no room.
             for distance in (4 * jerk..3_000u64).step_by(step) {
-                let floor = optimum_floor(distance, wide(jerk)).unwrap();
+                let scaled = scaled_distance(distance, jerk).unwrap();
+                let floor = optimum_floor(scaled, distance, wide(jerk)).unwrap();
                 let total = planned(distance, jerk).plan.total;
                 assert!(total <= floor.max(3) + 3, "{distance}, J {jerk}: {total}");
             }
