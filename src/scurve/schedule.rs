@@ -3,8 +3,8 @@
 
 use fixed::types::I32F32;
 
-use super::remainder::{Notch, Placement, MAX_NOTCHES};
-use super::shape::{corners, MainMove};
+use super::remainder::{Placement, MAX_NOTCHES};
+use super::shape::{corners, Group, MainMove};
 use super::ScurvePlan;
 use crate::replay::{count_and_laps, cycles_of};
 
@@ -29,9 +29,6 @@ pub(super) struct JerkChange {
 /// `next` (past [`LAPS`]) sends it to. Its length is below 2^48 cycles — the longest is a
 /// cruise, at most distance/velocity < 2^64 / 2^16 raw (the velocity register's least step is
 /// 2^-16 counts/cycle) — so 16 bits hold the laps.
-///
-/// While the schedule is being built, a slot at the top of the array holds a change of the main
-/// move instead ([`Self::main_change`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[repr(C)]
 pub(super) struct Run {
@@ -101,27 +98,6 @@ impl Run {
             jerk: self.jerk,
         }
     }
-
-    /// While building: a change of the main move by `residue` (the change of the jerk modulo
-    /// 2^32, see the schedule's slots) on `cycle`, kept in the slot's jerk and count.
-    const fn main_change(cycle: u64, residue: i32) -> Self {
-        Self {
-            jerk: cycle as i64,
-            count: residue as u32,
-            next: 0,
-            laps: 0,
-        }
-    }
-
-    /// While building: the cycle of the main move's change this slot holds.
-    const fn cycle(&self) -> u64 {
-        self.jerk as u64
-    }
-
-    /// While building: the change of the jerk modulo 2^32 this slot holds.
-    const fn residue(&self) -> i32 {
-        self.count as i32
-    }
 }
 
 /// At most this many runs in a sealed replay, its end marker included. The changes of a plan fall
@@ -155,17 +131,13 @@ const _: () = assert!(AFTER_ABRUPT_REST < LAPS);
 /// plan with a longer one rather than let its laps saturate (and its cruise fall short).
 pub(super) const LONGEST_RUN: u64 = 1 << 48;
 
-/// At most this many changes of the main move (see [`MAX_CHANGES`]): 20 with notch pairs, 30
-/// with fine units.
-const MAX_MAIN_CHANGES: usize = 30;
+/// At most this many changes of the main move are written ([`Changes::add_main`]): one for each
+/// corner of the longest units and each of its shortenings (1 + 2 + 2 + 3 + 2 + 3 + 3 + 4 = 20,
+/// see [`MAX_CHANGES`]), eight for each of at most two fine units.
+const MAX_MAIN_CHANGES: usize = 20 + 2 * 8;
 
 /// At most this many changes from notch pairs: eight per pair.
 const MAX_NOTCH_CHANGES: usize = 8 * MAX_NOTCHES;
-
-// The sealing pass writes runs from the start of the array while it reads the main move's
-// changes from their end; it cannot overtake them while the notch pairs' changes are fewer than
-// the free slots before the main move's 20 ([`Schedule::seal`]).
-const _: () = assert!(MAX_NOTCH_CHANGES < MAX_CHANGES - 20);
 
 /// The exact limits in I32F32 bits.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -217,114 +189,197 @@ impl Cycle for u64 {
     }
 }
 
-/// One notch pair's jerk changes, one at a time, in order: a jerk of ±1 on one cycle is a
-/// change by ±1 on it and back on the next, so the pair's four impulses at `s`, `s + w`, `s + k`
-/// and `s + k + w` are eight changes, `−1, +1, +1, −1, +1, −1, −1, +1`, each one cycle after the
-/// last or `w − 1` or `k − w − 1` cycles after it (they come in order because `1 ≤ w < k`).
-#[derive(Debug, Clone, Copy)]
-struct Stream<C> {
-    /// The cycle of the next change; [`Cycle::NEVER`] when done.
-    cycle: C,
-    /// Which of the eight changes is next.
-    index: u32,
-    /// Cycles from the second change to the third (and the sixth to the seventh): `w − 1`.
-    short_gap: C,
-    /// Cycles from the fourth change to the fifth: `k − w − 1`.
-    long_gap: C,
+/// Jerk changes, put in the order of their cycles once all are written ([`Self::sort`]): each
+/// the change of the jerk modulo 2^32 (a change is at most 2J < 2^32, so it is zero exactly
+/// when its residue is, and the running sum of the residues is the jerk, which fits 32 bits).
+/// Changes on the same cycle stay apart: the sealing pass adds them up.
+///
+/// Two sentinels spare the loops their tests of the ends: the first slot holds cycle 0 with no
+/// change, so a scan from the back stops there; the slots past the last change hold
+/// [`Cycle::NEVER`], at least one of them, so a merge of two lists reads the next cycle of each
+/// without asking whether it is there ([`Schedule::seal`]). Two arrays, not one of pairs: the
+/// sort's scan reads the cycles alone.
+struct Changes<C, const SLOTS: usize> {
+    cycles: [C; SLOTS],
+    residues: [i32; SLOTS],
+    len: usize,
 }
 
-impl<C: Cycle> Stream<C> {
-    /// No changes.
-    const DONE: Self = Self {
-        cycle: C::NEVER,
-        index: 8,
-        short_gap: C::NEVER,
-        long_gap: C::NEVER,
-    };
-
-    /// The pair's changes, from the first.
-    fn new(notch: &Notch) -> Self {
+impl<C: Cycle, const SLOTS: usize> Changes<C, SLOTS> {
+    /// No changes (but the sentinel on cycle 0).
+    fn new() -> Self {
+        let mut cycles = [C::NEVER; SLOTS];
+        cycles[0] = C::narrow(0);
         Self {
-            cycle: C::narrow(notch.start),
-            index: 0,
-            short_gap: C::narrow(notch.width - 1),
-            long_gap: C::narrow(notch.span - notch.width - 1),
+            cycles,
+            residues: [0; SLOTS],
+            len: 1,
         }
     }
 
-    /// The change at `cycle` (±1, raw units), moving on to the next.
-    fn advance(&mut self) -> i32 {
-        // Bit i of 0b1001_0110 is set where change i raises the jerk.
-        let amount = if (0b1001_0110 >> (self.index & 7)) & 1 == 1 {
-            1
-        } else {
-            -1
-        };
-        let gap = match self.index {
-            1 | 5 => self.short_gap,
-            3 => self.long_gap,
-            _ => C::narrow(1),
-        };
-        self.index += 1;
-        self.cycle = if self.index >= 8 {
-            C::NEVER
-        } else {
-            self.cycle + gap
-        };
-        amount
-    }
-}
-
-/// The first stream's next change (±1), the stream put back in order (a step or two down).
-fn next_notch_change<C: Cycle>(queue: &mut [Stream<C>; MAX_NOTCHES]) -> i32 {
-    let amount = queue[0].advance();
-    if queue[1].cycle < queue[0].cycle {
-        queue.swap(0, 1);
-        if queue[2].cycle < queue[1].cycle {
-            queue.swap(1, 2);
+    /// Adds `residue` on `cycle` to the sorted changes, in its place (added to a change on the
+    /// same cycle, if any): the few changes of groups off the table ([`Self::add_main`]), which
+    /// must not take more slots than they have distinct cycles. A change past the last free
+    /// slot (none comes: see [`MAX_CHANGES`]) is dropped, the sentinel kept.
+    fn insert(&mut self, cycle: C, residue: i32) {
+        let mut at = self.len.min(SLOTS - 1);
+        // Stops on the first slot at the latest: cycle 0 is no later than any.
+        while at > 1 && self.cycles[at - 1] > cycle {
+            at -= 1;
         }
+        if self.cycles[at - 1] == cycle {
+            self.residues[at - 1] = self.residues[at - 1].wrapping_add(residue);
+            return;
+        }
+        if self.len + 1 >= SLOTS {
+            return;
+        }
+        let mut k = self.len;
+        while k > at {
+            self.cycles[k] = self.cycles[k - 1];
+            self.residues[k] = self.residues[k - 1];
+            k -= 1;
+        }
+        self.cycles[at] = cycle;
+        self.residues[at] = residue;
+        self.len += 1;
     }
-    amount
-}
 
-/// A sealing pass under way ([`Schedule::seal`]): the jerk from cycle `from` on is `jerk`; runs
-/// before `written` are sealed, and the run before `from`, `open_cycles` at `open_jerk`, is
-/// written once the next run's jerk differs (a run's count and laps need its whole length). No
-/// jerk is i32::MIN (|jerk| ≤ J < 2^31), so the first run merges with nothing.
-struct Sealing<C> {
-    written: usize,
-    from: C,
-    jerk: i32,
-    open_cycles: C,
-    open_jerk: i32,
-}
-
-impl<C: Cycle> Sealing<C> {
-    /// The jerk changes by `change` (modulo 2^32) on `cycle` (not before `from`).
-    #[inline]
-    fn change(&mut self, runs: &mut [Run; MAX_CHANGES], cycle: C, change: i32) {
-        if cycle != self.from {
-            let hold = cycle - self.from;
-            if self.jerk == self.open_jerk {
-                self.open_cycles = self.open_cycles + hold;
-            } else {
-                self.write_open(runs);
-                (self.open_cycles, self.open_jerk) = (hold, self.jerk);
+    /// Puts the changes in the order of their cycles: an insertion sort, which costs a
+    /// comparison a change and a move a step out of place, as they were written nearly in
+    /// order (a unit's corners in theirs, a notch pair's too; corners within three cycles of
+    /// each other, and notch pairs that overlap, a few steps apart).
+    fn sort(&mut self) {
+        for next in 2..self.len.min(SLOTS) {
+            let (cycle, residue) = (self.cycles[next], self.residues[next]);
+            let mut at = next;
+            // Stops on the first slot at the latest: cycle 0 is no later than any.
+            while at > 1 && self.cycles[at - 1] > cycle {
+                self.cycles[at] = self.cycles[at - 1];
+                self.residues[at] = self.residues[at - 1];
+                at -= 1;
             }
-            self.from = cycle;
+            self.cycles[at] = cycle;
+            self.residues[at] = residue;
         }
-        self.jerk = self.jerk.wrapping_add(change);
     }
 
-    /// Writes the open run, if any, at index `written`, moving on; the slots before the end
-    /// marker's are enough (see [`MAX_CHANGES`]).
-    #[inline]
-    fn write_open(&mut self, runs: &mut [Run; MAX_CHANGES]) {
-        if self.open_cycles != C::narrow(0) && self.written < MAX_CHANGES - 1 {
-            runs[self.written] = self
-                .open_cycles
-                .run(i64::from(self.open_jerk), self.written as u16 + 1);
-            self.written += 1;
+    /// Writes the main move's changes, in the direction `sign` (±1), and sorts them.
+    ///
+    /// The groups of a unit mix differ from the longest ramps and cruise `(a, b, c)` by at most
+    /// one cycle each, so the eight corners of all of them fall on at most 20 cycles: the corner
+    /// `s` of a group with ramps shorter by `(δa, δb, δc)` lands `δ` = the sum of the `δ`s it
+    /// includes before the longest group's. Their counts are added up in a table first (no
+    /// search), then written corner by corner, each corner's cycles from the earliest: in order,
+    /// but where two corners are within three cycles. Groups further off (fine units, and the
+    /// main units where only fine units set the longest phase V) are then inserted corner by
+    /// corner, each added to a change on its cycle if there is one: their corners are many,
+    /// their cycles few.
+    fn add_main(&mut self, main: &MainMove, sign: i32) {
+        let (a, b, c) = main.longest_units();
+        let near = |g: &Group| {
+            (a - 1..=a).contains(&g.a) && (b - 1..=b).contains(&g.b) && (c - 1..=c).contains(&g.c)
+        };
+        // Counts of at most J < 2^31 units in all, with their sign: 32 bits.
+        let mut table = [[0i32; 4]; 8];
+        let mut far = false;
+        for group in main.groups() {
+            if !near(group) {
+                far = true;
+                continue;
+            }
+            let count = group.count as i32 * sign;
+            let (da, db, dc) = (
+                (a - group.a) as usize,
+                (b - group.b) as usize,
+                (c - group.c) as usize,
+            );
+            for (slot, delta) in [0, da, db, da + db, dc, dc + da, dc + db, dc + da + db]
+                .into_iter()
+                .enumerate()
+            {
+                // δ ≤ 3 (the mask tells the compiler so).
+                table[slot][delta & 3] += count;
+            }
+        }
+        // The largest δ of each corner: the number of ramps and cruises it includes.
+        const MOST_DELTA: [usize; 8] = [0, 1, 1, 2, 1, 2, 2, 3];
+        // At most 20 changes (see MAX_MAIN_CHANGES), counted in a local: the compiler keeps
+        // it in a register, where a field is reloaded after every write to the arrays.
+        let mut len = self.len;
+        for (slot, (base, corner)) in corners(a, b, c).into_iter().enumerate() {
+            for delta in (0..=MOST_DELTA[slot]).rev() {
+                let count = table[slot][delta];
+                if count != 0 && len < SLOTS - 1 {
+                    // base ≥ δ: a shorter ramp or cruise is still at least one cycle.
+                    self.cycles[len] = C::narrow(base - delta as u64);
+                    self.residues[len] = corner as i32 * count;
+                    len += 1;
+                }
+            }
+        }
+        self.len = len;
+        self.sort();
+        if far {
+            for group in main.groups().iter().filter(|g| !near(g)) {
+                let count = group.count as i32 * sign;
+                for (cycle, corner) in corners(group.a, group.b, group.c) {
+                    self.insert(C::narrow(cycle), corner as i32 * count);
+                }
+            }
+        }
+    }
+
+    /// Writes the notch pairs' changes, in the direction `sign` (±1), and sorts them.
+    ///
+    /// A pair lowers the acceleration by one unit at `s` and raises it back at `s + w`, and
+    /// later raises it at `s + k` and lowers it back at `s + k + w` (`1 ≤ w < k`). The
+    /// lowerings of all pairs come first, earliest pair first, then the raisings, in the order
+    /// of their `s + k`: in order, unless two pairs overlap in one half, so the sort has little
+    /// to move.
+    fn add_notches(&mut self, placement: &Placement, sign: i32) {
+        let notches = placement.notches();
+        let mut order = [0, 1, 2];
+        let order = &mut order[..notches.len().min(MAX_NOTCHES)];
+        // At most 24 changes (see MAX_NOTCH_CHANGES), counted in a local (see `add_main`).
+        let mut len = self.len;
+        let mut impulse = |cycle: u64, impulse: i32| {
+            // A jerk of `impulse` on `cycle` alone: a change by it there and back on the next.
+            if len + 2 < SLOTS {
+                let cycle = C::narrow(cycle);
+                self.cycles[len] = cycle;
+                self.residues[len] = impulse;
+                self.cycles[len + 1] = cycle + C::narrow(1);
+                self.residues[len + 1] = -impulse;
+                len += 2;
+            }
+        };
+        sort_by_key(order, |i| notches[i].start);
+        for &i in order.iter() {
+            let notch = notches[i];
+            impulse(notch.start, -sign);
+            impulse(notch.start + notch.width, sign);
+        }
+        sort_by_key(order, |i| notches[i].start + notches[i].span);
+        for &i in order.iter() {
+            let notch = notches[i];
+            let raised = notch.start + notch.span;
+            impulse(raised, sign);
+            impulse(raised + notch.width, -sign);
+        }
+        self.len = len;
+        self.sort();
+    }
+}
+
+/// Sorts the (at most three) indices `order` by `key`: two or three comparisons, no library
+/// call.
+fn sort_by_key(order: &mut [usize], key: impl Fn(usize) -> u64) {
+    for next in 1..order.len() {
+        let mut at = next;
+        while at > 0 && key(order[at - 1]) > key(order[at]) {
+            order.swap(at - 1, at);
+            at -= 1;
         }
     }
 }
@@ -356,18 +411,12 @@ pub(super) struct Replay {
 /// larger generator when a move is planned, a few hundred instructions.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) struct Schedule {
-    /// While building: in the top `main_len` slots, each change of the main move, sorted by its
-    /// cycle (0 = the first step), with the change of the jerk modulo 2^32 (a change is at most
-    /// 2J < 2^32, so it is zero exactly when its residue is, and the running sum of the
-    /// residues is the jerk, which fits 32 bits) — [`Run::main_change`]. Sealed: the runs in
-    /// `[0, len)`, and a smooth stop's at the end of the array.
+    /// The runs in `[0, len)`, and a smooth stop's at the end of the array. (The empty schedule
+    /// is all zeros, which a clear makes, where anything else is a copy from flash twice the
+    /// cost on a Cortex-M4.)
     runs: [Run; MAX_CHANGES],
-    /// Sealed: how many runs, the end marker included.
+    /// How many runs, the end marker included.
     len: usize,
-    /// While building: how many changes of the main move there are, at the top of the array
-    /// (zero, not an index, when empty: the empty schedule is then all zeros, which a clear
-    /// makes, where anything else is a copy from flash twice the cost on a Cortex-M4).
-    main_len: usize,
     /// The plan's summary (its peaks zero: [`Self::replay`] finds them when they are asked for).
     pub plan: ScurvePlan,
 }
@@ -382,7 +431,6 @@ impl Schedule {
             laps: 0,
         }; MAX_CHANGES],
         len: 0,
-        main_len: 0,
         plan: ScurvePlan {
             phases: [0; 7],
             total: 0,
@@ -416,7 +464,6 @@ impl Schedule {
     /// No move.
     pub fn clear(&mut self) {
         self.len = 0;
-        self.main_len = 0;
         self.plan = ScurvePlan::default();
     }
 
@@ -424,19 +471,19 @@ impl Schedule {
     /// velocity of `distance` on one cycle (jerk `+d, −2d, +d`), for `distance` within the
     /// acceleration and the velocity and at most half the jerk (checked by the caller).
     pub fn pulse(&mut self, distance: u64, direction: i64) {
-        self.main_len = 0;
-        // The changes +d, −3d, +3d, each below 2^33 and kept modulo 2^32 (see `runs`).
-        let d = distance as i64;
-        for (cycle, amount) in [(2, 3 * d), (1, -3 * d), (0, d)] {
-            self.prepend(cycle, amount * direction);
+        // |jerk| ≤ 2d ≤ J < 2^31.
+        let d = distance as i64 * direction;
+        for (index, jerk) in [d, -2 * d, d].into_iter().enumerate() {
+            self.runs[index] = Run::new(jerk, 1, index as u16 + 1);
         }
+        self.runs[3] = Run::END;
+        self.len = 4;
         self.plan = ScurvePlan {
             phases: [1, 0, 1, 0, 0, 0, 1],
             total: 3,
             peak_acceleration: I32F32::ZERO,
             peak_velocity: I32F32::ZERO,
         };
-        self.seal(&Placement::default(), direction);
     }
 
     /// Writes `changes` (`(cycles held, jerk along the move)`, in order: a smooth stop's,
@@ -468,33 +515,6 @@ impl Schedule {
         self.runs[..runs].iter().map(|run| (run.cycles(), run.jerk))
     }
 
-    /// Adds `amount` on `cycle` to the main move's changes (the top `main_len` entries), keeping
-    /// them sorted: the corners arrive latest first, so a change goes in at the front, or a step
-    /// or two in, or is added to a change on the same cycle.
-    fn prepend(&mut self, cycle: u64, amount: i64) {
-        // Modulo 2^32 (see `runs`): the truncation is the residue.
-        let amount = amount as i32;
-        let start = MAX_CHANGES - self.main_len.min(MAX_CHANGES);
-        let mut at = start;
-        while at < MAX_CHANGES && self.runs[at].cycle() < cycle {
-            at += 1;
-        }
-        if at < MAX_CHANGES && self.runs[at].cycle() == cycle {
-            let residue = self.runs[at].residue().wrapping_add(amount);
-            self.runs[at] = Run::main_change(cycle, residue);
-            return;
-        }
-        if start + MAX_MAIN_CHANGES <= MAX_CHANGES {
-            return; // Unreachable: the main move has at most MAX_MAIN_CHANGES (see MAX_CHANGES).
-        }
-        // A step or two at most: a loop, not a library call.
-        for k in start..at {
-            self.runs[k - 1] = self.runs[k];
-        }
-        self.runs[at - 1] = Run::main_change(cycle, amount);
-        self.main_len += 1;
-    }
-
     /// Makes this the schedule of `main` less the notch pairs of `placement`, in the direction
     /// `direction` (±1), its main units' ramps `(a, b)`, sealed ([`Self::seal`]); `false` (and
     /// nothing built) if the move is shorter than its ramps.
@@ -509,117 +529,105 @@ impl Schedule {
         let Some(cruise) = total.checked_sub(2 * (a + b)) else {
             return false;
         };
-        self.main_len = 0;
         // Written in place, field by field (a summary built apart would be copied in).
         self.plan.phases = [a, b - a, a, cruise, a, b - a, a];
         self.plan.total = total;
         self.plan.peak_acceleration = I32F32::ZERO;
         self.plan.peak_velocity = I32F32::ZERO;
-        // The groups of a unit mix differ from the longest ramps and cruise (a, b, c) by at most
-        // one cycle each, so the eight corners of all of them fall on at most 20 cycles: the
-        // corner `s` of a group with ramps one shorter by (δa, δb, δc) lands δ = the sum of the
-        // δs it includes before the longest group's. Their changes are added up in a table
-        // first (no search), then put in order, latest first; groups further off (fine units)
-        // are added corner by corner.
-        let (a, b, c) = (main.most(|g| g.a), main.most(|g| g.b), main.most(|g| g.c));
-        // Counts of at most J < 2^31 units each, with their sign: 32 bits.
-        let mut table = [[0i32; 4]; 8];
-        for group in main.groups() {
-            let (da, db, dc) = (a - group.a, b - group.b, c - group.c);
-            let count = group.count as i32 * direction as i32;
-            if da > 1 || db > 1 || dc > 1 {
-                for (cycle, sign) in corners(group.a, group.b, group.c).into_iter().rev() {
-                    self.prepend(cycle, sign * i64::from(count));
-                }
-                continue;
-            }
-            let (da, db, dc) = (da as usize, db as usize, dc as usize);
-            for (slot, delta) in [0, da, db, da + db, dc, dc + da, dc + db, dc + da + db]
-                .into_iter()
-                .enumerate()
-            {
-                table[slot][delta] += count;
-            }
+        let sign = direction as i32;
+        if total < 1 << 31 {
+            self.seal_from::<u32>(main, placement, sign, total as u32);
+        } else {
+            self.seal_from::<u64>(main, placement, sign, total);
         }
-        for (slot, (base, sign)) in corners(a, b, c).into_iter().enumerate().rev() {
-            for (delta, &amount) in table[slot].iter().enumerate() {
-                if amount != 0 {
-                    // base ≥ δ: a shorter ramp or cruise is still at least one cycle.
-                    self.prepend(base - delta as u64, sign * i64::from(amount));
-                }
-            }
-        }
-        self.seal(placement, direction);
         true
     }
 
-    /// Makes the main move's changes (sorted, the top `main_len` entries) and the notch pairs of
-    /// `placement` a replay: runs of constant jerk, each the jerk it sets and the cycles it
+    /// [`Self::seal`]s the changes of `main` and `placement` in the direction `sign`, its cycles
+    /// of type `C`.
+    fn seal_from<C: Cycle>(&mut self, main: &MainMove, placement: &Placement, sign: i32, total: C) {
+        let mut main_changes = Changes::<C, { MAX_MAIN_CHANGES + 2 }>::new();
+        main_changes.add_main(main, sign);
+        let mut notch_changes = Changes::<C, { MAX_NOTCH_CHANGES + 2 }>::new();
+        notch_changes.add_notches(placement, sign);
+        self.seal(&main_changes, &notch_changes, total);
+    }
+
+    /// Makes the main move's changes and the notch pairs' (each in order, [`Changes`]) a
+    /// replay of `total` cycles: runs of constant jerk, each the jerk it sets and the cycles it
     /// holds, from index 0, closed by an end marker (setting the jerk to zero for good: the
     /// acceleration and velocity are zero there already; [`Run::END`]).
     ///
-    /// One forward pass merges the three streams of notch changes (each pair's eight changes
-    /// come in order: a jerk of ±1 on one cycle is a change by ±1 on it and back on the next)
-    /// into the main move's, adds up changes on the same cycle and drops changes that leave the
-    /// jerk as it was (and those on or after the last cycle), which would cost a replay's slow
-    /// path for nothing. The runs are written from the start of the array while the main
-    /// move's changes are read from its end: after `r` main and `n` notch changes at most
-    /// `r + n` runs are written, and `n ≤ 24 < MAX_CHANGES − 20`, so the writing never
-    /// overtakes the reading.
-    fn seal(&mut self, placement: &Placement, direction: i64) {
-        if self.plan.total < 1 << 31 {
-            self.seal_in::<u32>(placement, direction);
-        } else {
-            self.seal_in::<u64>(placement, direction);
+    /// One forward pass merges the two lists (each ends in [`Cycle::NEVER`], so the merge
+    /// reads on without a test of its length: the end is the first change on or after the last
+    /// cycle, the main move's last corner at the latest), adds up changes on the same cycle and
+    /// drops changes that leave the jerk as it was (and those on or after the last cycle),
+    /// which would cost a replay's slow path for nothing. The cycles are 32 bits wide for a
+    /// move shorter than 2^31 cycles (most moves: a 32-bit core then compares two cycles in one
+    /// instruction, not three), 64 otherwise.
+    fn seal<C: Cycle, const MAIN: usize, const NOTCHES: usize>(
+        &mut self,
+        main: &Changes<C, MAIN>,
+        notches: &Changes<C, NOTCHES>,
+        total: C,
+    ) {
+        let zero = C::narrow(0);
+        // The changes on cycle 0 (the sentinels among them, see [`Changes`]): the first run's.
+        let (mut next_main, mut next_notch, mut jerk) = (0, 0, 0i32);
+        while next_main < MAIN && main.cycles[next_main] == zero {
+            jerk = jerk.wrapping_add(main.residues[next_main]);
+            next_main += 1;
         }
+        while next_notch < NOTCHES && notches.cycles[next_notch] == zero {
+            jerk = jerk.wrapping_add(notches.residues[next_notch]);
+            next_notch += 1;
+        }
+        // The open run starts on `start` at `run_jerk`; the changes on cycle `at` read so far
+        // make the jerk `jerk`.
+        let (mut start, mut run_jerk, mut at, mut written) = (zero, jerk, zero, 0);
+        loop {
+            let main_cycle = main.cycles.get(next_main).copied().unwrap_or(C::NEVER);
+            let notch_cycle = notches.cycles.get(next_notch).copied().unwrap_or(C::NEVER);
+            // A notch change on the same cycle as the main move's comes after it: the two add
+            // up either way.
+            let (cycle, residue) = if notch_cycle < main_cycle {
+                next_notch += 1;
+                (notch_cycle, notches.residues[next_notch - 1])
+            } else {
+                next_main += 1;
+                (main_cycle, main.residues[next_main - 1])
+            };
+            if cycle != at {
+                if cycle >= total {
+                    break;
+                }
+                // The jerk from `at` on is `jerk`: a new run unless it is the open run's.
+                if jerk != run_jerk {
+                    self.write_run(&mut written, at - start, run_jerk);
+                    (start, run_jerk) = (at, jerk);
+                }
+                at = cycle;
+            }
+            jerk = jerk.wrapping_add(residue);
+        }
+        // The jerk from `at` to the last cycle is `jerk`; the end marker follows.
+        if jerk != run_jerk {
+            self.write_run(&mut written, at - start, run_jerk);
+            start = at;
+        }
+        self.write_run(&mut written, total - start, jerk);
+        self.runs[written] = Run::END;
+        self.len = written + 1;
     }
 
-    /// [`Self::seal`] with cycles of type `C`, wide enough for every cycle of the move.
-    fn seal_in<C: Cycle>(&mut self, placement: &Placement, direction: i64) {
-        let total = C::narrow(self.plan.total);
-        // The pairs' streams, earliest next change first; a stream that is done sinks to the
-        // end.
-        let mut queue = [Stream::<C>::DONE; MAX_NOTCHES];
-        for (stream, notch) in queue.iter_mut().zip(placement.notches()) {
-            *stream = Stream::new(notch);
+    /// Writes the run of `cycles` at `jerk` at index `written`, moving on; the slots before the
+    /// end marker's are enough (see [`MAX_CHANGES`]).
+    #[inline(always)]
+    fn write_run<C: Cycle>(&mut self, written: &mut usize, cycles: C, jerk: i32) {
+        if *written < MAX_CHANGES - 1 {
+            self.runs[*written] = cycles.run(i64::from(jerk), *written as u16 + 1);
+            *written += 1;
         }
-        queue.sort_unstable_by_key(|stream| stream.cycle);
-        let sign = direction as i32;
-        let mut sealing = Sealing {
-            written: 0,
-            from: C::narrow(0),
-            jerk: 0,
-            open_cycles: C::narrow(0),
-            open_jerk: i32::MIN,
-        };
-        // The main move's changes in order, each after the notch changes before it (a notch
-        // change on the same cycle comes after it: the two add up either way).
-        for main in MAX_CHANGES - self.main_len.min(MAX_CHANGES)..MAX_CHANGES {
-            // Both read before any run is written (the writing stays behind, see above).
-            let (cycle, residue) = (
-                C::narrow(self.runs[main].cycle()).min(total),
-                self.runs[main].residue(),
-            );
-            while queue[0].cycle < cycle {
-                let at = queue[0].cycle;
-                let amount = next_notch_change(&mut queue);
-                sealing.change(&mut self.runs, at, amount * sign);
-            }
-            if cycle == total {
-                break;
-            }
-            sealing.change(&mut self.runs, cycle, residue);
-        }
-        while queue[0].cycle < total {
-            let at = queue[0].cycle;
-            let amount = next_notch_change(&mut queue);
-            sealing.change(&mut self.runs, at, amount * sign);
-        }
-        // The last run ends on the last cycle; the end marker follows it.
-        sealing.change(&mut self.runs, total, 0);
-        sealing.write_open(&mut self.runs);
-        self.runs[sealing.written] = Run::END;
-        self.len = sealing.written + 1;
     }
 
     /// Replays the sealed schedule run by run, in the move's direction (`direction` ±1): its
@@ -682,7 +690,7 @@ impl Schedule {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scurve::shape::Group;
+    use crate::scurve::remainder::Notch;
 
     /// The sealed runs are, cycle by cycle, the main move's jerk (from its groups' closed form)
     /// plus the notch pairs' impulses: the one-pass merge loses, reorders and drops nothing,
@@ -720,25 +728,119 @@ mod tests {
                 width: 6,
                 span: 12716,
             });
+        assert_runs_are_the_jerk(&main, &placement, (443, 444));
+    }
+
+    /// Checks that the schedule built of `main` and `placement` (in both directions) is, cycle
+    /// by cycle, the main move's jerk plus the pairs' impulses, that it lasts the move's
+    /// cycles, and that no two runs in a row have the same jerk (each would cost the replay a
+    /// change for nothing). Moves longer than 20,000 cycles are checked on each run's first and
+    /// last cycle (the jerk is constant between changes either way).
+    fn assert_runs_are_the_jerk(main: &MainMove, placement: &Placement, ramps: (u64, u64)) {
         let total = main.total();
+        let expected = |n: u64| {
+            let impulses: i64 = placement
+                .notches()
+                .iter()
+                .flat_map(|notch| notch.impulses())
+                .filter(|&(at, _)| at == n)
+                .map(|(_, amount)| amount)
+                .sum();
+            main.jerk_at(n) + impulses
+        };
         for direction in [1, -1] {
             let mut schedule = Schedule::EMPTY;
-            assert!(schedule.build(&main, &placement, direction, (443, 444)));
-            let mut cycle = 0u64;
+            assert!(schedule.build(main, placement, direction, ramps));
+            let (mut cycle, mut last_jerk) = (0u64, None);
             for (hold, jerk) in schedule.runs() {
-                for n in cycle..cycle + hold {
-                    let impulses: i64 = placement
-                        .notches()
-                        .iter()
-                        .flat_map(|notch| notch.impulses())
-                        .filter(|&(at, _)| at == n)
-                        .map(|(_, amount)| amount)
-                        .sum();
-                    assert_eq!(jerk, direction * (main.jerk_at(n) + impulses), "cycle {n}");
+                assert!(hold >= 1);
+                assert_ne!(Some(jerk), last_jerk, "two runs at one jerk, cycle {cycle}");
+                let checked: &mut dyn Iterator<Item = u64> = if total <= 20_000 {
+                    &mut (cycle..cycle + hold)
+                } else {
+                    &mut [cycle, cycle + hold - 1].into_iter()
+                };
+                for n in checked {
+                    assert_eq!(jerk, direction * expected(n), "cycle {n}");
                 }
-                cycle += hold;
+                (cycle, last_jerk) = (cycle + hold, Some(jerk));
             }
             assert_eq!(cycle, total);
+            assert_eq!(schedule.run(schedule.len() - 1), Run::END);
+        }
+    }
+
+    /// A mix with a fine unit whose phase V starts after every main unit's: the main units are
+    /// then off the table of their own longest ramps and are inserted corner by corner, on as
+    /// many slots as they have cycles (a case a debug assertion of the planner caught).
+    #[test]
+    fn fine_units_later_than_the_main_units() {
+        let group = |count, a, b, c| Group { count, a, b, c };
+        let groups = [
+            group(14_294_443, 4, 5, 11),
+            group(9_119_693, 4, 5, 10),
+            group(2_881_831, 4, 4, 11),
+            group(1, 4, 4, 10),
+            group(1, 3, 5, 11),
+            group(1, 3, 5, 10),
+            group(1, 1, 1, 14),
+        ];
+        assert_runs_are_the_jerk(&MainMove::of_groups(&groups), &Placement::default(), (4, 5));
+    }
+
+    /// A move of more than 2^31 cycles is sealed in 64-bit cycles, with laps.
+    #[test]
+    fn moves_longer_than_2_pow_31_cycles() {
+        let group = |count, a, b, c| Group { count, a, b, c };
+        let c = (1 << 33) + 7;
+        let groups = [group(3, 20, 25, c), group(2, 19, 25, c - 1)];
+        let placement = Placement::default().with(Notch {
+            start: 30,
+            width: 3,
+            span: c - 40,
+        });
+        assert_runs_are_the_jerk(&MainMove::of_groups(&groups), &placement, (20, 25));
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(2_000))]
+
+        /// Any mix of units within a cycle of the longest ramps and phase V start, up to two
+        /// fine units anywhere and up to three notch pairs anywhere inside the move (on the
+        /// same cycles or not, overlapping or not) seal to the move's jerk.
+        #[test]
+        fn sealed_runs_are_the_jerk_of_any_mix(
+            (a, b, cruise) in (1u64..12, 0u64..12, 0u64..40),
+            kinds in proptest::collection::vec((0u64..2, 0u64..2, 0u64..2, 1u64..1_000), 1..8),
+            fine in proptest::collection::vec(0u64..1_000, 0..3),
+            notches in proptest::collection::vec((0u64..1_000, 1u64..5, 0u64..1_000), 0..4),
+        ) {
+            let b = a + b;
+            let c = a + b + cruise;
+            let mut groups: Vec<Group> = kinds
+                .iter()
+                .map(|&(da, db, dc, count)| Group {
+                    count,
+                    a: (a - da).max(1),
+                    b: (b - db).max((a - da).max(1)),
+                    c: c - dc,
+                })
+                .collect();
+            let total = groups.iter().map(|g| g.a + g.b + g.c).max().unwrap();
+            for x in fine {
+                if total >= 4 {
+                    groups.push(Group { count: 1, a: 1, b: 1, c: 2 + x % (total - 3) });
+                }
+            }
+            let mut placement = Placement::default();
+            for (start, width, span) in notches {
+                // Inside the move: its last change, s + k + w + 1, before the last cycle.
+                let Some(room) = total.checked_sub(width + 4) else { continue };
+                let span = width + 1 + span % room.max(1);
+                let Some(starts) = total.checked_sub(span + width + 2) else { continue };
+                placement = placement.with(Notch { start: start % starts.max(1), width, span });
+            }
+            assert_runs_are_the_jerk(&MainMove::of_groups(&groups), &placement, (1, 1));
         }
     }
 }

@@ -141,6 +141,24 @@ impl MainMove {
         self.groups().iter().map(f).max().unwrap_or(0)
     }
 
+    /// The longest first ramp, second ramp and phase V start `(a, b, c)` over the main units:
+    /// the groups but fine units `tb(1, 1, x)` (whose `x` may be longer than every other
+    /// unit's phase V start), unless there are only those; zeros when empty. One pass.
+    pub fn longest_units(&self) -> (u64, u64, u64) {
+        let longest = |fine: bool| {
+            self.groups()
+                .iter()
+                .filter(|g| fine || g.a + g.b > 2)
+                .fold((0, 0, 0), |(a, b, c), g| {
+                    (a.max(g.a), b.max(g.b), c.max(g.c))
+                })
+        };
+        match longest(false) {
+            (0, _, _) => longest(true),
+            units => units,
+        }
+    }
+
     /// Cycles of the move: the longest unit's.
     pub fn total(&self) -> u64 {
         self.most(|g| g.a + g.b + g.c)
