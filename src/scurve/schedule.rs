@@ -807,9 +807,9 @@ mod tests {
     proptest::proptest! {
         #![proptest_config(proptest::prelude::ProptestConfig::with_cases(2_000))]
 
-        /// Any mix of units within a cycle of the longest ramps and phase V start, up to two
-        /// fine units anywhere and up to three notch pairs anywhere inside the move (on the
-        /// same cycles or not, overlapping or not) seal to the move's jerk.
+        /// Any mix of units within a cycle of the longest ramps and phase V start, and up to
+        /// two fine units anywhere or up to three notch pairs anywhere inside the move (on the
+        /// same cycles or not, overlapping or not), seal to the move's jerk.
         #[test]
         fn sealed_runs_are_the_jerk_of_any_mix(
             (a, b, cruise) in (1u64..12, 0u64..12, 0u64..40),
@@ -835,6 +835,8 @@ mod tests {
                 }
             }
             let mut placement = Placement::default();
+            // Fine units and notch pairs never come together (see MAX_CHANGES).
+            let notches = if groups.len() > kinds.len() { Vec::new() } else { notches };
             for (start, width, span) in notches {
                 // Inside the move: its last change, s + k + w + 1, before the last cycle.
                 let Some(room) = total.checked_sub(width + 4) else { continue };
