@@ -34,8 +34,8 @@
 //! Planning takes a bounded number of integer operations, the same on every target (no floating
 //! point): at most eight shapes, each solved in closed form, a fixed number of notch-pair
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
-//! checked). Measured (see the README for the commands): 9,484 Cortex-M4 instructions median,
-//! 17,024 at worst over the first 1,000 random moves (20,493 over 5,000: a move of 14 cycles
+//! checked). Measured (see the README for the commands): 9,476 Cortex-M4 instructions median,
+//! 16,999 at worst over the first 1,000 random moves (20,460 over 5,000: a move of 14 cycles
 //! with a huge jerk, whose first candidates fail); on the x86
 //! development machine a few hundred nanoseconds median, under about 2 µs at worst. Moves the
 //! shapes near the optimum cannot finish (mostly from fractional positions with a jerk of a few

@@ -198,8 +198,8 @@ impl Cycle for u64 {
 ///
 /// Two sentinels spare the loops their tests of the ends: the first slot holds cycle 0 with no
 /// change, so a scan from the back stops there; the slots past the last change hold
-/// [`Cycle::NEVER`], at least one of them, so a merge of two lists reads the next cycle of each
-/// without asking whether it is there ([`Schedule::seal`]). Two arrays, not one of pairs: the
+/// [`Cycle::NEVER`], at least one of them, so a merge of two lists ends on them without
+/// counting what is left of each ([`Schedule::seal`]). Two arrays, not one of pairs: the
 /// sort's scan reads the cycles alone.
 struct Changes<C, const SLOTS: usize> {
     cycles: [C; SLOTS],
@@ -236,15 +236,10 @@ impl<C: Cycle, const SLOTS: usize> Changes<C, SLOTS> {
         if self.len + 1 >= SLOTS {
             return;
         }
-        let mut k = self.len;
-        while k > at {
-            self.cycles[k] = self.cycles[k - 1];
-            self.residues[k] = self.residues[k - 1];
-            k -= 1;
-        }
-        self.cycles[at] = cycle;
-        self.residues[at] = residue;
+        self.cycles[self.len] = cycle;
+        self.residues[self.len] = residue;
         self.len += 1;
+        self.settle(self.len - 1);
     }
 
     /// Puts the changes in the order of their cycles: an insertion sort, which costs a
@@ -253,17 +248,24 @@ impl<C: Cycle, const SLOTS: usize> Changes<C, SLOTS> {
     /// each other, and notch pairs that overlap, a few steps apart).
     fn sort(&mut self) {
         for next in 2..self.len.min(SLOTS) {
-            let (cycle, residue) = (self.cycles[next], self.residues[next]);
-            let mut at = next;
-            // Stops on the first slot at the latest: cycle 0 is no later than any.
-            while at > 1 && self.cycles[at - 1] > cycle {
-                self.cycles[at] = self.cycles[at - 1];
-                self.residues[at] = self.residues[at - 1];
-                at -= 1;
-            }
-            self.cycles[at] = cycle;
-            self.residues[at] = residue;
+            self.settle(next);
         }
+    }
+
+    /// Moves the change at `index` back past the later changes before it (those before it in
+    /// order already).
+    #[inline(always)]
+    fn settle(&mut self, index: usize) {
+        let (cycle, residue) = (self.cycles[index], self.residues[index]);
+        let mut at = index;
+        // Stops on the first slot at the latest: cycle 0 is no later than any.
+        while at > 1 && self.cycles[at - 1] > cycle {
+            self.cycles[at] = self.cycles[at - 1];
+            self.residues[at] = self.residues[at - 1];
+            at -= 1;
+        }
+        self.cycles[at] = cycle;
+        self.residues[at] = residue;
     }
 
     /// Writes the main move's changes, in the direction `sign` (±1), and sorts them.
@@ -341,7 +343,7 @@ impl<C: Cycle, const SLOTS: usize> Changes<C, SLOTS> {
     /// to move.
     fn add_notches(&mut self, placement: &Placement, sign: i32) {
         let notches = placement.notches();
-        let mut order = [0, 1, 2];
+        let mut order: [usize; MAX_NOTCHES] = core::array::from_fn(|i| i);
         let order = &mut order[..notches.len().min(MAX_NOTCHES)];
         // At most 24 changes (see MAX_NOTCH_CHANGES), counted in a local (see `add_main`).
         let mut len = self.len;

@@ -143,7 +143,8 @@ impl MainMove {
 
     /// The longest first ramp, second ramp and phase V start `(a, b, c)` over the main units:
     /// the groups but fine units `tb(1, 1, x)` (whose `x` may be longer than every other
-    /// unit's phase V start), unless there are only those; zeros when empty. One pass.
+    /// unit's phase V start), unless there are only those (a second pass, then); zeros when
+    /// empty.
     pub fn longest_units(&self) -> (u64, u64, u64) {
         let longest = |fine: bool| {
             self.groups()
