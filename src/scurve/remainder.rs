@@ -135,14 +135,22 @@ impl Placement {
                 || n >= bounds.deceleration_jerked
         };
         let higher_fits = |n: u64| (bounds.last_rise_start..bounds.first_landing).contains(&n);
-        let jerk_fits = new.iter().all(|notch| {
-            notch.impulses().iter().all(|&(cycle, _)| {
-                let added: i64 = notches
-                    .iter()
-                    .flat_map(|other| other.impulses())
-                    .filter(|&(at, _)| at == cycle)
-                    .map(|(_, amount)| amount)
-                    .sum();
+        let first_new = notches.len() - new.len();
+        let jerk_fits = new.iter().enumerate().all(|(index, notch)| {
+            notch.impulses().iter().all(|&(cycle, amount)| {
+                // A pair's four impulses fall on four cycles (0 < w < k, checked above), so on
+                // one of them it adds its own ±1 alone; only the other pairs are looked up (none,
+                // for a plan of one pair).
+                let mut added = amount;
+                for (other, pair) in notches.iter().enumerate() {
+                    if other != first_new + index {
+                        for (at, other_amount) in pair.impulses() {
+                            if at == cycle {
+                                added += other_amount;
+                            }
+                        }
+                    }
+                }
                 // Where the main move's jerk is known to leave room, |added| ≤ 3 ≤ … is enough
                 // (a main jerk in [0, J] less up to J, or in [−J, 0] plus up to J).
                 let room = (added <= 0 && lower_fits(cycle)) || (added >= 0 && higher_fits(cycle));
