@@ -163,14 +163,22 @@ impl Placement {
         // plan they make and check it: [`super::schedule::Schedule::replay`]). The velocity is
         // first bounded below by [`Bounds::floor`] (one closed form instead of one per group);
         // the exact sum is taken only where that floor is not enough.
-        let covered = |n: u64| {
-            let depth: u64 = notches.iter().map(|notch| notch.depth_at(n)).sum();
+        // A pair's own dip is one unit deep on its first and its last cycle (0 < w < k), so
+        // only the other pairs' depths are summed there.
+        let covered = |own: usize, n: u64| {
+            let mut depth = 1;
+            for (other, pair) in notches.iter().enumerate() {
+                if other != own {
+                    depth += pair.depth_at(n);
+                }
+            }
             bounds.floor.velocity_at(n) >= depth || main.velocity_at(n) >= depth
         };
         jerk_fits
-            && new
-                .iter()
-                .all(|notch| covered(notch.start) && covered(notch.last_dip()))
+            && new.iter().enumerate().all(|(index, notch)| {
+                covered(first_new + index, notch.start)
+                    && covered(first_new + index, notch.last_dip())
+            })
     }
 }
 
@@ -659,6 +667,24 @@ mod tests {
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(4_000))]
+
+        /// What `Placement::fits` relies on to skip a pair's own part: its four impulses fall on
+        /// four cycles, and its dip is one unit deep on its first and its last cycle — checked
+        /// against the pair's velocity summed from its jerk, cycle by cycle.
+        #[test]
+        fn a_pair_is_one_unit_deep_at_both_ends(start in 0u64..50, width in 1u64..40, extra in 1u64..40) {
+            let notch = Notch { start, width, span: width + extra };
+            let cycles: Vec<u64> = notch.impulses().iter().map(|&(at, _)| at).collect();
+            prop_assert!(cycles.windows(2).all(|pair| pair[0] < pair[1]));
+            let (mut acceleration, mut velocity) = (0i64, 0i64);
+            for n in 0..notch.last_dip() + 3 {
+                acceleration += notch.impulses().iter().filter(|&&(at, _)| at == n).map(|&(_, j)| j).sum::<i64>();
+                velocity += acceleration;
+                prop_assert_eq!(notch.depth_at(n) as i64, -velocity, "cycle {}", n);
+            }
+            prop_assert_eq!(notch.depth_at(notch.start), 1);
+            prop_assert_eq!(notch.depth_at(notch.last_dip()), 1);
+        }
 
         /// Any solution found solves the equation within the range; none found means none
         /// exists (brute force over the range).
