@@ -834,11 +834,11 @@ mod tests {
             let c = a + b + cruise;
             let mut groups: Vec<Group> = kinds
                 .iter()
-                .map(|&(da, db, dc, count)| Group {
-                    count,
-                    a: (a - da).max(1),
-                    b: (b - db).max((a - da).max(1)),
-                    c: c - dc,
+                .map(|&(da, db, dc, count)| {
+                    let (a, b) = ((a - da).max(1), (b - db).max((a - da).max(1)));
+                    // Phase V starts after phase III ends (with no cruise, a shorter phase V
+                    // start would come first: not a triple box).
+                    Group { count, a, b, c: (c - dc).max(a + b) }
                 })
                 .collect();
             let total = groups.iter().map(|g| g.a + g.b + g.c).max().unwrap();
