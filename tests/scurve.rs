@@ -259,6 +259,37 @@ fn changes_in_motion_are_a_command_error_and_change_nothing() {
     assert_eq!(states.last().unwrap().position, -50);
 }
 
+/// `set_parameters` plans in place, over the schedule of the move before (a smooth stop's runs,
+/// laid out at the end of the schedule's array, among it): each new move is, cycle by cycle, the
+/// one a fresh generator at rest at the same position plans.
+#[test]
+fn a_move_planned_over_the_last_one_is_a_fresh_generators() {
+    let mut axis = SCurve::new(parameters(1_000.0, 2.0, 0.1, 0.01)).unwrap();
+    for _ in 0..120 {
+        axis.step();
+    }
+    axis.stop(StopKind::Smooth);
+    while !axis.is_complete() {
+        axis.step();
+    }
+    assert_ne!(
+        axis.state().position.frac(),
+        I32F32::ZERO,
+        "a stop between counts"
+    );
+    // From where the stop left the axis, then from the end of that move.
+    for next in [
+        parameters(-50.0, 3.0, 0.2, 0.02),
+        parameters(2_000.0, 0.5, 0.01, 0.0001),
+    ] {
+        let at = axis.state().position;
+        axis.set_parameters(next).unwrap();
+        let mut fresh = SCurve::with_position(next, at).unwrap();
+        assert_eq!(axis.plan(), fresh.plan());
+        assert_eq!(run_move(&mut axis).unwrap(), run_move(&mut fresh).unwrap());
+    }
+}
+
 /// Regression (issue #17, found by the scripted tests): a smooth stop on the cycle a move arrives
 /// — position on the destination and velocity zero, the acceleration not yet zero — rests one
 /// cycle later. It was complete at once, so a move started then began its jerk from zero while

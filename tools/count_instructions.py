@@ -945,8 +945,8 @@ def measure_trapezoid_commands(probe: Probe, moves: int, after: int = 3000) -> t
     return within, beyond, commands
 
 
-def measure_other_commands(probe: Probe, moves: int,
-                           seed: int = 14) -> tuple[list[int], list[int], list[int], list[int]]:
+def measure_other_commands(probe: Probe, moves: int, seed: int = 14
+                           ) -> tuple[list[int], list[int], list[int], list[int], list[int]]:
     """Per-cycle counts after commands in motion of the S-curve (a smooth or abrupt stop, or both,
     at a random cycle of one of the planned random moves short enough to step; after half the
     abrupt ones a restart, right after the drop or later) and of velocity
@@ -954,13 +954,14 @@ def measure_other_commands(probe: Probe, moves: int,
     command to the end (at most 5,000 cycles after the last); the S-curve's cycles after smooth
     stops alone and after stops that include an abrupt one, apart; and the S-curve stop commands'
     own counts (a smooth stop lays the whole stop out), those and smooth stops early in as many
-    longer moves."""
+    longer moves; and the restarts' own counts (`SCurve::restart`: a plan, into the generator
+    that stopped)."""
     import math
     import random
     rng = random.Random(seed)
     log_uniform = lambda low, high: int(math.exp(rng.uniform(math.log(low), math.log(high))))
     restarts = random.Random(seed + 1)
-    scurve, abrupt, velocity_counts, stops = [], [], [], []
+    scurve, abrupt, velocity_counts, stops, restart_counts = [], [], [], [], []
     index = 0
     stepped = 0
     while stepped < moves and index < 20 * moves:
@@ -986,8 +987,10 @@ def measure_other_commands(probe: Probe, moves: int,
             # so the other moves stay as they were).
             if steps == 0:
                 counts.append(probe.call("probe_step").instructions)
-            if probe.call("probe_restart", (move[0] // 2) & 0xFFFF_FFFF, move[1]).r0:
+            restarted = probe.call("probe_restart", (move[0] // 2) & 0xFFFF_FFFF, move[1])
+            if restarted.r0:
                 raise ProbeFailure(f"restart of move {index - 1} refused")
+            restart_counts.append(restarted.instructions)
         for _ in range(5000):
             counts.append(probe.call("probe_step").instructions)
             if probe.call("probe_complete").r0:
@@ -1021,7 +1024,7 @@ def measure_other_commands(probe: Probe, moves: int,
             for _ in range(rng.choice([0, 1, 50])):
                 velocity_counts.append(probe.call("probe_velocity_step").instructions)
         velocity_counts += [probe.call("probe_velocity_step").instructions for _ in range(1000)]
-    return scurve, abrupt, velocity_counts, stops
+    return scurve, abrupt, velocity_counts, stops, restart_counts
 
 
 def probe_rng_gap(index: int) -> int:
@@ -1203,6 +1206,7 @@ def main() -> int:
               "random trapezoid moves from rest, each to its end)")
         others, setups = measure_other_generators(probe, args.trapezoid_moves)
         stops: list[int] = []
+        restarts: list[int] = []
         for name, counts_ in others.items():
             print(f"  {name:26} max {max(counts_):4}, mean {statistics.fmean(counts_):6.1f} instructions "
                   f"({len(counts_)} cycles)")
@@ -1230,7 +1234,8 @@ def main() -> int:
                       f"instructions ({len(beyond)} cycles)")
             print(f"  {'the commands (planning)':26} max {max(commands):4}, mean {statistics.fmean(commands):6.1f} "
                   f"instructions ({len(commands)} commands)")
-            scurve_after, abrupt_after, velocity_after, stops = measure_other_commands(probe, args.command_moves)
+            scurve_after, abrupt_after, velocity_after, stops, restarts = measure_other_commands(
+                probe, args.command_moves)
             others["VelocityContouring after commands"] = velocity_after
             others["SCurve after smooth stops"] = scurve_after
             print(f"  {'SCurve after smooth stops':26} max {max(scurve_after):4}, mean "
@@ -1242,6 +1247,8 @@ def main() -> int:
                   f"{statistics.fmean(abrupt_after):6.1f} instructions ({len(abrupt_after)} cycles)")
             print(f"  {'SCurve stop commands':26} max {max(stops):4}, mean "
                   f"{statistics.fmean(stops):6.1f} instructions ({len(stops)} stops)")
+            print(f"  {'SCurve restarts (plans)':26} max {max(restarts):4}, mean "
+                  f"{statistics.fmean(restarts):6.1f} instructions ({len(restarts)} restarts)")
             print(f"  {'VelocityContouring after commands':26} max {max(velocity_after):4}, mean "
                   f"{statistics.fmean(velocity_after):6.1f} instructions ({len(velocity_after)} cycles)")
         print(f"== a 3-axis linear interpolation, one call per cycle (LinearInterpolation::step: the "
@@ -1303,6 +1310,9 @@ def main() -> int:
     planning_ok = within("planning", counts, args.plan_budget, f" (move {worst[0]})", "moves")
     planning_ok &= within("Trapezoid set-up", setups, args.setup_budget, "", "moves")
     planning_ok &= within("an S-curve stop command", stops, args.stop_budget, "", "stops")
+    # A restart plans a move: the planning budget, wherever restarts were measured.
+    if restarts:
+        planning_ok &= within("an S-curve restart (a plan)", restarts, args.plan_budget, "", "restarts")
     planning_ok &= within("the MCX514 S-curve's plan", mcx514_plans, args.mcx514_plan_budget, "", "moves")
     stepping_ok = within("one step of SCurve", all_steps, args.step_budget, "", "cycles")
     for name, counts_ in others.items():

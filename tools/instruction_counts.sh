@@ -9,7 +9,8 @@
 # lie in one phase of the bench move (benches/common), calling `step` through a trait object;
 # callgrind counts the instructions inside `step` (callees included) and this divides by the
 # window's cycles. Also x86 planning: benches/examples/plan_instructions.rs plans the planning
-# bench's first 20,000 S-curve moves, and callgrind counts `SCurve::new` inclusive, per plan.
+# bench's first 20,000 S-curve moves, and callgrind counts `SCurve::new` inclusive, per plan; then
+# the same moves as re-plans (`--set-parameters`: `SCurve::set_parameters` on a generator at rest).
 # Cortex-M4: tools/cortex_m4_budgets.sh (every cycle of every generator of the probe, counted
 # under an emulator; the call itself included).
 set -euo pipefail
@@ -61,10 +62,22 @@ if [ -z "$total" ]; then
   echo "planning: no count for $function" >&2
   exit 1
 fi
+# The same moves planned by `set_parameters` on a generator at rest (a re-plan).
+valgrind --tool=callgrind --callgrind-out-file="$out" \
+  target/release/examples/plan_instructions "$moves" --set-parameters >/dev/null 2>&1
+replan_function='profilegen::scurve::SCurve::set_parameters'
+replan=$(callgrind_annotate --inclusive=yes "$out" 2>/dev/null \
+  | grep -F ":$replan_function [" | head -1 | awk '{gsub(",", "", $1); print $1}')
+if [ -z "$replan" ]; then
+  echo "planning: no count for $replan_function" >&2
+  exit 1
+fi
 echo
 echo "== x86 instructions per S-curve plan (callgrind, inclusive; the planning bench's first moves)"
 awk -v m="$moves" -v t="$total" -v f="$function" \
   'BEGIN { printf "%-26s %8d %8.0f   %s\n", "scurve/plan (mean)", m, t / m, f }'
+awk -v m="$moves" -v t="$replan" -v f="$replan_function" \
+  'BEGIN { printf "%-26s %8d %8.0f   %s\n", "scurve/replan (mean)", m, t / m, f }'
 
 if [ "${1:-}" != "--x86" ]; then
   echo

@@ -336,12 +336,26 @@ impl SCurve {
             });
         }
         let limits = check(&parameters)?;
-        // Planned aside: a refused plan changes nothing.
-        let mut schedule = Schedule::EMPTY;
-        let direction = plan_move(&parameters, limits, self.state.position, &mut schedule)?;
+        // Planned in place: the planner writes the schedule only with a whole plan it has
+        // found (every write is a `Schedule::build`, `pulse` or `clear` that succeeds; a
+        // `build` that fails writes nothing, and the fine units are planned aside), so a refused
+        // plan changes nothing — and no 808-byte schedule is cleared and copied in per move.
+        #[cfg(debug_assertions)]
+        let before = self.schedule;
+        let direction =
+            match plan_move(&parameters, limits, self.state.position, &mut self.schedule) {
+                Ok(direction) => direction,
+                Err(error) => {
+                    #[cfg(debug_assertions)]
+                    debug_assert!(
+                        self.schedule == before,
+                        "a refused plan changed the schedule"
+                    );
+                    return Err(error);
+                }
+            };
         self.parameters = parameters;
         self.limits = limits;
-        self.schedule = schedule;
         self.direction = direction;
         self.velocity_cleared = false;
         self.start();

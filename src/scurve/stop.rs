@@ -307,6 +307,42 @@ mod tests {
         }
     }
 
+    /// `set_parameters` plans in place, over what the last move left in the schedule: a plan
+    /// kept with its peaks (as a stop that overwrote the plan's changes leaves it) and a stop's
+    /// changes at the end of the array. The new plan reads, and runs, as a fresh generator's.
+    #[test]
+    fn a_plan_made_over_a_kept_one_reads_as_a_fresh_one() {
+        let mut random = Random(0x9E37_79B9_7F4A_7C15);
+        for _ in 0..300 {
+            let mut parameters = || ScurveParameters {
+                destination: random.log_uniform(20) as i32,
+                max_velocity: MaxVelocity::from_bits(random.log_uniform(29) as u32).unwrap(),
+                max_acceleration: ScurveAcceleration::from_bits(random.log_uniform(15) as u16)
+                    .unwrap(),
+                jerk: Jerk::from_bits(random.log_uniform(31) as u32).unwrap(),
+            };
+            let (last, next) = (parameters(), parameters());
+            let Ok(mut axis) = SCurve::new(last) else {
+                continue;
+            };
+            // What an overwriting stop leaves (see the test above), then at rest where it was.
+            axis.schedule.plan = axis.plan();
+            axis.schedule.seal_at_end(&[(1, 0); 44], 1);
+            axis.state = State::at_rest(axis.state.position);
+            axis.rest();
+            assert!(axis.is_complete());
+            let Ok(fresh) = SCurve::new(next) else {
+                continue;
+            };
+            axis.set_parameters(next).unwrap();
+            assert_eq!(axis.plan(), fresh.plan());
+            assert_eq!(axis.schedule.len(), fresh.schedule.len());
+            for index in 0..fresh.schedule.len() {
+                assert_eq!(axis.schedule.run(index), fresh.schedule.run(index));
+            }
+        }
+    }
+
     /// Laid out from random states across the ranges (not only those of a move: any
     /// acceleration within the floor, any velocity from which the stop can level off, jerks
     /// from one raw unit), every cycle of the layout is the per-cycle rule's.
