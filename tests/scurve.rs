@@ -502,15 +502,21 @@ fn every_movable_distance_moves() {
     }
 }
 
-/// Moves of 133 to 140 cycles with a jerk of one raw unit from fractional positions, where only
-/// the jerk binds: the search's notch pairs left them up to 3.16 cycles over the continuous
+/// Moves of 133 to 255 cycles with a jerk of one raw unit from fractional positions, where only
+/// the jerk binds: the search's notch pairs left them up to 3.41 cycles over the continuous
 /// optimum (the first found by `a_small_jerk_moves_a_sub_count_distance_within_the_bound`, the
-/// others by a scan of 300,000 such moves) until `pure_jerk` took moves of up to 162 cycles:
-/// within 3 cycles of it (the float reference), stepped to the destination exactly.
+/// others by scans of such moves) until `pure_jerk` took moves of up to 260 cycles: within 3
+/// cycles of it (the float reference), stepped to the destination exactly.
 #[test]
 fn jerk_bound_moves_of_over_128_cycles_within_the_bound() {
-    for (raw, velocity, acceleration) in [(76_706i64, 1, 1), (80_078, 1, 8), (76_842, 659_696, 75)]
-    {
+    for (raw, velocity, acceleration) in [
+        (76_706i64, 1, 1),
+        (80_078, 1, 8),
+        (76_842, 659_696, 75),
+        (147_086, 9, 27),
+        (158_070, 185, 170),
+        (498_710, 5, 9_221),
+    ] {
         let p = ScurveParameters {
             destination: 7,
             max_velocity: MaxVelocity::from_bits(velocity).unwrap(),

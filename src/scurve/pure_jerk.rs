@@ -32,12 +32,15 @@ use crate::division::{div, div_ceil};
 
 /// Moves whose continuous optimum is under this many cycles are tried here: the cost of a try
 /// grows with the square of the length, and longer moves have room for the search's own pairs.
-/// 162 takes every distance under 2^17 raw units (`∛(32·2^17) ≈ 161.3` cycles with a jerk of
-/// one raw unit): at 128, moves of 133 to 140 cycles with a jerk of one raw unit were planned
-/// up to 3.16 cycles over the optimum (2 of 300,000 random ones of that class, and a case the
-/// property tests found; `tests/scurve.rs`); at 162 none of 600,000, nor of 200,000 from 2^17
-/// to 2^20 raw units with a jerk of 1 to 3.
-const LONGEST: u64 = 162;
+/// 260 takes every distance under 2^19 raw units with a jerk of one raw unit (`∛(32·2^19) =
+/// 256` cycles): at 128, moves of 133 to 140 cycles with that jerk were planned up to 3.16
+/// cycles over the optimum (2 of 300,000 random ones under 2^17 raw units, and a case the
+/// property tests found), and at 162 moves of 171 to 255 cycles up to 3.41 (5 of 200,000 from
+/// 2^17 to 2^19 raw units); at 260 none (and none of 200,000 from 2^19 to 2^22, where the
+/// search's own pairs have room: worst +2.13). Such a move costs less here than the search
+/// spends failing on it (Cortex-M4: 70,000–85,000 instructions, against up to 146,000), but
+/// the plan's stack grows by 16 bytes a cycle of this bound ([`Profile`]).
+const LONGEST: u64 = 260;
 
 /// Cycle counts tried: the optimum's floor and the next three (the bound is the optimum + 3).
 const COUNTS: u64 = 4;
@@ -683,10 +686,10 @@ mod tests {
                 );
             }
         }
-        // 32·D ≥ 162³·J = 4,251,528·J: too long for this module (4,251,528 / 32 = 132,860.25).
-        assert_eq!(scaled_distance(132_861, 1), None);
-        assert_eq!(scaled_distance(132_860, 1), Some(32 * 132_860));
-        assert_eq!(scaled_distance(2 * 132_861, 2), None);
+        // 32·D ≥ 260³·J = 17,576,000·J: too long for this module (17,576,000 / 32 = 549,250).
+        assert_eq!(scaled_distance(549_250, 1), None);
+        assert_eq!(scaled_distance(549_249, 1), Some(32 * 549_249));
+        assert_eq!(scaled_distance(2 * 549_250, 2), None);
         // The acceleration limit binds (2·A³ ≤ D·J²).
         let binding = Limits64 {
             acceleration: 3,
