@@ -33,10 +33,10 @@ use crate::division::{div, div_ceil};
 /// Moves whose continuous optimum is under this many cycles are tried here: the cost of a try
 /// grows with the square of the length, and longer moves have room for the search's own pairs.
 /// 260 takes every distance under 2^19 raw units with a jerk of one raw unit (`∛(32·2^19) =
-/// 256` cycles): at 128, moves of 133 to 140 cycles with that jerk were planned up to 3.16
-/// cycles over the optimum (2 of 300,000 random ones under 2^17 raw units, and a case the
-/// property tests found), and at 162 moves of 171 to 255 cycles up to 3.41 (5 of 200,000 from
-/// 2^17 to 2^19 raw units); at 260 none (and none of 200,000 from 2^19 to 2^22, where the
+/// 256` cycles): at 128, moves of over 130 cycles with that jerk were planned up to 4.71
+/// cycles over the optimum (2 of 300,000 random ones under 2^17 raw units, a case the property
+/// tests found, and the seeded scan of `tests/scurve.rs`), and at 162 moves of 171 to 255 cycles
+/// up to 3.41 (5 of 200,000 from 2^17 to 2^19 raw units); at 260 none (and none of 200,000 from 2^19 to 2^22, where the
 /// search's own pairs have room: worst +2.13). Such a move costs less here than the search
 /// spends failing on it (Cortex-M4: 70,000–85,000 instructions, against up to 146,000), but
 /// the plan's stack grows by 16 bytes a cycle of this bound ([`Profile`]).
