@@ -59,6 +59,34 @@ fn optimum(p: &ScurveParameters, distance: f64) -> f64 {
     )
 }
 
+/// Plans `p` from rest at `start` and checks the move: within 3 cycles of the continuous optimum
+/// (the float reference, counted from one cycle: a move under it takes the 3 cycles every move
+/// does), and stepped to the destination exactly, every cycle within the limits ([`run_move`]),
+/// in as many cycles as planned.
+fn moves_within_the_bound(p: ScurveParameters, start: I32F32) -> Result<(), TestCaseError> {
+    let mut axis =
+        SCurve::with_position(p, start).map_err(|error| TestCaseError::fail(error.to_string()))?;
+    let target = i64::from(p.destination) << 32;
+    let distance = (target - start.to_bits()).unsigned_abs() as f64 / 4_294_967_296.0;
+    let best = optimum(&p, distance).max(1.0);
+    let total = axis.duration();
+    prop_assert!(
+        total as f64 <= best + 3.0,
+        "{} cycles, optimum {}: {:?} from {}",
+        total,
+        best,
+        p,
+        start
+    );
+    let states = run_move(&mut axis)?;
+    prop_assert_eq!(states.len() as u64, total);
+    prop_assert_eq!(
+        *states.last().unwrap(),
+        State::at_rest(I32F32::from_bits(target))
+    );
+    Ok(())
+}
+
 /// The datasheet's numbers (velocity 2.75, acceleration 0.175, jerk 0.0075) as a full move.
 #[test]
 fn the_datasheet_move() {
@@ -523,20 +551,7 @@ fn jerk_bound_moves_of_over_128_cycles_within_the_bound() {
             max_acceleration: ScurveAcceleration::from_bits(acceleration).unwrap(),
             jerk: Jerk::from_bits(1).unwrap(),
         };
-        let target = 7i64 << 32;
-        let mut axis = SCurve::with_position(p, I32F32::from_bits(target - raw)).unwrap();
-        let best = optimum(&p, raw as f64 / 4_294_967_296.0);
-        let total = axis.duration();
-        assert!(
-            total as f64 <= best + 3.0,
-            "{raw}: {total} cycles, optimum {best}"
-        );
-        let states = run_move(&mut axis).unwrap();
-        assert_eq!(states.len() as u64, total);
-        assert_eq!(
-            *states.last().unwrap(),
-            State::at_rest(I32F32::from_bits(target))
-        );
+        moves_within_the_bound(p, I32F32::from_bits((7i64 << 32) - raw)).unwrap();
     }
 }
 
@@ -603,18 +618,7 @@ fn ramps_around_the_optimum_before_one_cycle_ramps() {
             max_acceleration: ScurveAcceleration::from_bits(acceleration).unwrap(),
             jerk: Jerk::from_bits(jerk).unwrap(),
         };
-        let mut axis = SCurve::with_position(p, I32F32::from_bits(start)).unwrap();
-        let target = i64::from(destination) << 32;
-        let distance = (target - start).unsigned_abs() as f64 / 4_294_967_296.0;
-        let best = optimum(&p, distance);
-        let total = axis.plan().total;
-        assert!(total as f64 <= best + 3.0, "{total} cycles, optimum {best}");
-        let states = run_move(&mut axis).unwrap();
-        assert_eq!(states.len() as u64, total);
-        assert_eq!(
-            *states.last().unwrap(),
-            State::at_rest(I32F32::from_bits(target))
-        );
+        moves_within_the_bound(p, I32F32::from_bits(start)).unwrap();
     }
 }
 
@@ -809,14 +813,7 @@ proptest! {
             jerk: Jerk::from_bits(jerk).unwrap(),
         };
         let distance = if backwards { -raw } else { raw };
-        let target = 7i64 << 32;
-        let mut axis = SCurve::with_position(p, I32F32::from_bits(target - distance)).unwrap();
-        let best = optimum(&p, raw as f64 / 4_294_967_296.0).max(1.0);
-        let total = axis.duration();
-        prop_assert!(total as f64 <= best + 3.0, "{} cycles, optimum {}: {:?}", total, best, p);
-        let states = run_move(&mut axis)?;
-        prop_assert_eq!(states.len() as u64, total);
-        prop_assert_eq!(*states.last().unwrap(), State::at_rest(I32F32::from_bits(target)));
+        moves_within_the_bound(p, I32F32::from_bits((7i64 << 32) - distance))?;
     }
 
     /// V ≤ min(J, A) (see `a_velocity_reached_in_one_cycle_moves_in_the_fewest_cycles`), from

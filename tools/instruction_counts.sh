@@ -53,25 +53,27 @@ done
 # calls (the moves' registers are drawn outside it), divided by the moves.
 cargo build --quiet --release -p profilegen-benches --example plan_instructions
 moves=20000
-valgrind --tool=callgrind --callgrind-out-file="$out" \
-  target/release/examples/plan_instructions "$moves" >/dev/null 2>&1
+# The instructions callgrind counts inside function $1 (callees included) over the moves,
+# planned by plan_instructions with the arguments that follow.
+plan_count() {
+  local function=$1
+  shift
+  valgrind --tool=callgrind --callgrind-out-file="$out" \
+    target/release/examples/plan_instructions "$moves" "$@" >/dev/null 2>&1
+  local count
+  count=$(callgrind_annotate --inclusive=yes "$out" 2>/dev/null \
+    | grep -F ":$function [" | head -1 | awk '{gsub(",", "", $1); print $1}')
+  if [ -z "$count" ]; then
+    echo "planning: no count for $function" >&2
+    exit 1
+  fi
+  echo "$count"
+}
 function='profilegen::scurve::SCurve::new'
-total=$(callgrind_annotate --inclusive=yes "$out" 2>/dev/null \
-  | grep -F ":$function [" | head -1 | awk '{gsub(",", "", $1); print $1}')
-if [ -z "$total" ]; then
-  echo "planning: no count for $function" >&2
-  exit 1
-fi
+total=$(plan_count "$function")
 # The same moves planned by `set_parameters` on a generator at rest (a re-plan).
-valgrind --tool=callgrind --callgrind-out-file="$out" \
-  target/release/examples/plan_instructions "$moves" --set-parameters >/dev/null 2>&1
 replan_function='profilegen::scurve::SCurve::set_parameters'
-replan=$(callgrind_annotate --inclusive=yes "$out" 2>/dev/null \
-  | grep -F ":$replan_function [" | head -1 | awk '{gsub(",", "", $1); print $1}')
-if [ -z "$replan" ]; then
-  echo "planning: no count for $replan_function" >&2
-  exit 1
-fi
+replan=$(plan_count "$replan_function" --set-parameters)
 echo
 echo "== x86 instructions per S-curve plan (callgrind, inclusive; the planning bench's first moves)"
 awk -v m="$moves" -v t="$total" -v f="$function" \
