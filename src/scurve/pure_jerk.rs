@@ -38,8 +38,8 @@ use crate::division::{div, div_ceil};
 /// tests found, and the seeded scan of `tests/scurve.rs`), and at 162 moves of 171 to 255 cycles
 /// up to 3.41 (5 of 200,000 from 2^17 to 2^19 raw units); at 260 none (and none of 200,000 from 2^19 to 2^22, where the
 /// search's own pairs have room: worst +2.13). Such a move costs less here than the search
-/// spends failing on it (Cortex-M4: 70,000–85,000 instructions, against up to 146,000), but
-/// the plan's stack grows by 16 bytes a cycle of this bound ([`Profile`]).
+/// spends failing on it (Cortex-M4: 66,000–79,000 instructions in all, against up to 146,000);
+/// the bound costs no stack ([`Profile::fits`] keeps no table of the move's cycles).
 const LONGEST: u64 = 260;
 
 /// Cycle counts tried: the optimum's floor and the next three (the bound is the optimum + 3).
@@ -146,11 +146,6 @@ fn plan(
 ) -> bool {
     let jerk = limits.jerk;
     let mut checks = 0;
-    let cycles = &mut Cycles {
-        jerk: [0; MAX_CYCLES],
-        acceleration: [0; MAX_CYCLES],
-        velocity: [0; MAX_CYCLES],
-    };
     for total in counts {
         // What two pairs can take at most (spans under the move's length).
         let reach = 2 * WIDEST * total;
@@ -197,8 +192,8 @@ fn plan(
                             c: c - 1,
                         },
                     ]);
-                    let mut profile = Profile::of(&main, limits, total);
-                    if let Some(placement) = profile.take(cycles, rest, apart, &mut checks) {
+                    let profile = Profile::of(&main, limits, total);
+                    if let Some(placement) = profile.take(rest, apart, &mut checks) {
                         let built = out.build(&main, &placement, direction, (a, b));
                         // Checked cycle by cycle by `Profile::fits`; the tests run with debug
                         // assertions, and every plan made here is replayed as well.
@@ -233,25 +228,11 @@ type Interval = (i32, i32);
 /// jerk takes at most 13 levels (12 corners), so room comes and goes at most 6 times.
 const MAX_INTERVALS: usize = 7;
 
-/// The most cycles a candidate here takes.
-const MAX_CYCLES: usize = (LONGEST + COUNTS) as usize;
-
-/// A main move cycle by cycle: the jerk, acceleration and velocity on each cycle (raw units,
-/// after that cycle's jerk), filled in by [`Profile::fill`] for the move being checked. One for
-/// all the candidates of a pass (2 KB, cleared once).
-struct Cycles {
-    jerk: [i32; MAX_CYCLES],
-    acceleration: [i32; MAX_CYCLES],
-    velocity: [i64; MAX_CYCLES],
-}
-
 /// A main move's jerk changes and the cycles where its jerk has room for one impulse of each
-/// sign: what decides, with its [`Cycles`], whether notch pairs fit it ([`Self::fits`]).
+/// sign: what decides whether notch pairs fit it ([`Self::fits`]).
 #[derive(Debug)]
 struct Profile {
-    /// Whether [`Cycles`] holds this move's cycles.
-    filled: bool,
-    /// The main move's jerk changes, in order.
+    /// The main move's jerk changes `(cycle, change)`, in order.
     corners: [(u64, i64); 16],
     corner_count: usize,
     total: u64,
@@ -265,8 +246,7 @@ struct Profile {
 }
 
 impl Profile {
-    /// `main` (of `total ≤ MAX_CYCLES` cycles, within `limits`): its room, by pieces of constant
-    /// jerk; the cycles themselves are filled in when a pair is first checked ([`Self::fill`]).
+    /// `main` (of `total` cycles, within `limits`): its room, by pieces of constant jerk.
     fn of(main: &MainMove, limits: Limits64, total: u64) -> Self {
         // The corners of every group, in order (at most 16: an insertion sort).
         let mut corners = [(0u64, 0i64); 16];
@@ -284,7 +264,6 @@ impl Profile {
             }
         }
         let mut profile = Self {
-            filled: false,
             corners,
             corner_count: len,
             total,
@@ -318,26 +297,24 @@ impl Profile {
         profile
     }
 
-    /// The jerk, acceleration and velocity of every cycle into `cycles`, once.
-    fn fill(&mut self, cycles: &mut Cycles) {
-        if self.filled {
-            return;
-        }
-        self.filled = true;
-        // Within the limits (see `optimum_floor`): |jerk| ≤ J < 2^31, |acceleration| ≤ A < 2^31.
+    /// The main move's jerk, acceleration and velocity after cycle `n` (raw units; all zero
+    /// before cycle 0), and the index of its first change after `n`: in closed form, from the
+    /// changes — a change `c` on cycle `t ≤ n` adds `c` to the jerk, `c·m` to the acceleration
+    /// and `c·m(m + 1)/2` to the velocity, `m = n − t + 1` cycles later. Within the limits (see
+    /// `optimum_floor`): |jerk| ≤ J < 2^31, |acceleration| ≤ A < 2^47, and m < 2^10 (the
+    /// moves here are under [`LONGEST`] + [`COUNTS`] cycles), so every product fits in 64 bits.
+    fn state_after(&self, n: i64) -> (i64, i64, i64, usize) {
         let (mut jerk, mut acceleration, mut velocity) = (0i64, 0i64, 0i64);
         let mut next = 0;
-        for n in 0..self.total.min(MAX_CYCLES as u64) {
-            while next < self.corner_count && self.corners[next].0 <= n {
-                jerk += self.corners[next].1;
-                next += 1;
-            }
-            acceleration += jerk;
-            velocity += acceleration;
-            let i = n as usize;
-            (cycles.jerk[i], cycles.acceleration[i]) = (jerk as i32, acceleration as i32);
-            cycles.velocity[i] = velocity;
+        while next < self.corner_count && self.corners[next].0 as i64 <= n {
+            let (cycle, change) = self.corners[next];
+            let m = n - cycle as i64 + 1;
+            jerk += change;
+            acceleration += change * m;
+            velocity += change * (m * (m + 1) / 2);
+            next += 1;
         }
+        (jerk, acceleration, velocity, next)
     }
 
     fn lower(&self) -> &[Interval] {
@@ -353,44 +330,64 @@ impl Profile {
     /// velocity under every dip within the limits (elsewhere the main move's are, and the pairs
     /// change nothing). The distance is right by construction, and the move ends as the main
     /// move does: every dip ends by its third-last cycle.
-    fn fits(&mut self, cycles: &mut Cycles, pairs: &[Pair]) -> bool {
-        self.fill(cycles);
+    ///
+    /// One pass over the cycles the pairs span, from their first impulse to their last, with the
+    /// main move's state there found in closed form ([`Self::state_after`]) and carried on
+    /// cycle by cycle: no table of the move's cycles (which took 4 KB of stack and its clearing
+    /// most of the cost of a plan made here).
+    fn fits(&self, pairs: &[Pair]) -> bool {
         let (jerk_limit, acceleration_limit) =
             (self.limits.jerk as i64, self.limits.acceleration as i64);
+        // The impulses in order of their cycles (at most 8: an insertion sort).
         let mut impulses = [(0i32, 0i64); 8];
         let mut len = 0;
         for &pair in pairs {
             for impulse in impulses_of(pair) {
-                impulses[len] = impulse;
+                let mut k = len;
+                while k > 0 && impulses[k - 1].0 > impulse.0 {
+                    impulses[k] = impulses[k - 1];
+                    k -= 1;
+                }
+                impulses[k] = impulse;
                 len += 1;
             }
         }
-        let impulses = &impulses[..len];
-        for &(cycle, _) in impulses {
-            let change: i64 = impulses
-                .iter()
-                .filter(|(at, _)| *at == cycle)
-                .map(|(_, change)| change)
-                .sum();
-            let jerk = i64::from(cycles.jerk[cycle as usize]) + change;
-            if jerk.abs() > jerk_limit {
-                return false;
-            }
+        if len == 0 {
+            return true;
         }
-        let from = pairs.iter().map(|p| p.0).min().unwrap_or(0);
-        let to = pairs.iter().map(|p| p.0 + p.1 + p.2).max().unwrap_or(0);
-        let mut lowered = 0i64;
-        for n in from..to {
+        // The first impulse is a pair's start, the last the end of its window.
+        let (from, to) = (impulses[0].0, impulses[len - 1].0);
+        let (mut jerk, mut acceleration, mut velocity, mut next) =
+            self.state_after(i64::from(from) - 1);
+        let (mut impulse, mut lowered) = (0, 0i64);
+        for n in from..=to {
+            while next < self.corner_count && self.corners[next].0 as i64 <= i64::from(n) {
+                jerk += self.corners[next].1;
+                next += 1;
+            }
+            // The impulses on this cycle, added up (a pair's may meet another's).
+            if impulse < len && impulses[impulse].0 == n {
+                let mut change = 0;
+                while impulse < len && impulses[impulse].0 == n {
+                    change += impulses[impulse].1;
+                    impulse += 1;
+                }
+                if (jerk + change).abs() > jerk_limit {
+                    return false;
+                }
+            }
+            if n == to {
+                break;
+            }
+            acceleration += jerk;
+            velocity += acceleration;
             let mut change = 0;
             for &(s, w, k) in pairs {
                 change +=
                     i64::from((s + k..s + k + w).contains(&n)) - i64::from((s..s + w).contains(&n));
             }
-            let i = n as usize;
             lowered -= change;
-            if (i64::from(cycles.acceleration[i]) + change).abs() > acceleration_limit
-                || cycles.velocity[i] < lowered
-            {
+            if (acceleration + change).abs() > acceleration_limit || velocity < lowered {
                 return false;
             }
         }
@@ -518,13 +515,7 @@ impl Profile {
     /// ([`Self::fits`]); counts the candidates checked in `checks`. With `apart`, only pairs
     /// whose impulses fall on distinct cycles (each then has the room its interval gives it);
     /// else the ends of the start ranges, where impulses may meet in room for both.
-    fn take(
-        &mut self,
-        cycles: &mut Cycles,
-        rest: u64,
-        apart: bool,
-        checks: &mut u32,
-    ) -> Option<Placement> {
+    fn take(&self, rest: u64, apart: bool, checks: &mut u32) -> Option<Placement> {
         if rest == 0 {
             return Some(Placement::default());
         }
@@ -549,7 +540,7 @@ impl Profile {
                         return None;
                     }
                     *checks += 1;
-                    if self.fits(cycles, &[(start, w, k)]) {
+                    if self.fits(&[(start, w, k)]) {
                         return Some(placement(&[(start, w, k)]));
                     }
                 }
@@ -594,7 +585,7 @@ impl Profile {
                                 }
                                 *checks += 1;
                                 let pairs = [(s1, w1, k1), (s2, w2, k2)];
-                                if self.fits(cycles, &pairs) {
+                                if self.fits(&pairs) {
                                     return Some(placement(&pairs));
                                 }
                             }
@@ -668,6 +659,49 @@ mod tests {
     fn moves_by_hand() {
         assert_eq!(planned(101, 1).plan.total, 16);
         assert_eq!(planned(192, 3).plan.total, 14);
+    }
+
+    /// The main move's state after any cycle, in closed form (`Profile::state_after`), against
+    /// the jerk summed cycle by cycle from its changes (for two groups, one a cycle shorter).
+    #[test]
+    fn the_state_after_a_cycle_is_the_summed_jerks() {
+        let group = |count, c| Group {
+            count,
+            a: 3,
+            b: 5,
+            c,
+        };
+        let main = MainMove::of_groups(&[group(4, 11), group(3, 10)]);
+        let total = 3 + 5 + 11;
+        let profile = Profile::of(&main, wide(7), total);
+        let (mut jerk, mut acceleration, mut velocity, mut distance) = (0i64, 0i64, 0i64, 0i64);
+        assert_eq!(profile.state_after(-1), (0, 0, 0, 0));
+        for n in 0..total + 2 {
+            jerk += main
+                .groups()
+                .iter()
+                .flat_map(|g| {
+                    crate::scurve::shape::corners(g.a, g.b, g.c).map(|(at, sign)| {
+                        if at == n {
+                            sign * g.count as i64
+                        } else {
+                            0
+                        }
+                    })
+                })
+                .sum::<i64>();
+            acceleration += jerk;
+            velocity += acceleration;
+            distance += velocity;
+            let (j, a, v, next) = profile.state_after(n as i64);
+            assert_eq!((j, a, v), (jerk, acceleration, velocity), "after cycle {n}");
+            assert!(profile.corners[..next].iter().all(|&(at, _)| at <= n));
+            assert!(profile.corners[next..profile.corner_count]
+                .iter()
+                .all(|&(at, _)| at > n));
+        }
+        // At rest at the end, with the distance of the two groups: 4·3·5·11 + 3·3·5·10.
+        assert_eq!((jerk, acceleration, velocity, distance), (0, 0, 0, 1_110));
     }
 
     /// `⌊∛(32·D/J)⌋` against its definition, and `None` where the move leaves the class.
