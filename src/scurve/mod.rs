@@ -13,6 +13,7 @@
 //!   solver that sizes them;
 //! - [`pure_jerk`]: moves where only the jerk binds (a few dozen cycles with a jerk of a few raw
 //!   units, mostly what a stop leaves), whose notch pairs go wherever the jerk has room;
+//! - [`roots`]: the integer square and cube roots the search starts from;
 //! - [`schedule`]: the sorted jerk changes, built once for the winner, and the pass that finds
 //!   its peaks;
 //! - [`stop`]: the jerk-limited smooth stop.
@@ -48,6 +49,7 @@
 mod predict;
 mod pure_jerk;
 mod remainder;
+mod roots;
 mod schedule;
 mod search;
 mod shape;

@@ -25,8 +25,8 @@
 //! checked per pass and two passes.
 
 use super::remainder::{Notch, Placement};
+use super::roots::cube_root;
 use super::schedule::{Limits64, Schedule};
-use super::search::cube_root;
 use super::shape::{Group, MainMove};
 use crate::division::{div, div_ceil};
 

@@ -15,27 +15,10 @@
 
 use super::pure_jerk;
 use super::remainder::{self, velocity_notch, Placement};
+use super::roots::{cube_root, square_root};
 use super::schedule::{Limits64, Schedule, LONGEST_RUN};
 use super::shape::{MainMove, Mix};
 use crate::division::{div, div_ceil, div_rem};
-
-/// `⌊∛n⌋`, bitwise (22 steps; no floating point, so every target computes the same plan).
-pub(super) fn cube_root(mut n: u64) -> u64 {
-    let mut root = 0u64;
-    // From the highest digit (base 8) that is not zero.
-    let mut shift = (63 - n.leading_zeros() as i32) / 3 * 3;
-    while shift >= 0 {
-        root *= 2;
-        // (2r + 1)³ − (2r)³ = 3·2r·(2r + 1) + 1, compared at this digit.
-        let next = 3 * root * (root + 1) + 1;
-        if (n >> shift) >= next {
-            n -= next << shift;
-            root += 1;
-        }
-        shift -= 3;
-    }
-    root
-}
 
 /// One shape: ramps `(a, b)`, a unit mix, a velocity notch of `notch` units, phase V from cycle
 /// `c`; `total = a + b + c` cycles.
@@ -151,7 +134,7 @@ fn shapes(distance: u64, limits: Limits64, found: &mut [Shape; MAX_SHAPES]) -> u
         .and_then(|s| s.checked_mul(jerk))
         .is_none_or(|s| s > velocity)
     {
-        a0 = a0.min(div(velocity, jerk).isqrt());
+        a0 = a0.min(square_root(div(velocity, jerk)));
     }
     let cube = a0.checked_mul(a0).and_then(|s| s.checked_mul(a0));
     if cube
@@ -176,7 +159,7 @@ fn shapes(distance: u64, limits: Limits64, found: &mut [Shape; MAX_SHAPES]) -> u
         // division of this (often 32 bits) by b, not of D by peak·b.
         let quotient_up = quotient + u64::from(remainder != 0);
         let root = if quotient < 1 << 60 {
-            (a * a + 4 * quotient).isqrt()
+            square_root(a * a + 4 * quotient)
         } else {
             // Only with a peak below 8 raw units: rare enough for the 128-bit root.
             let square = u128::from(a * a) + 4 * u128::from(quotient);
@@ -806,20 +789,6 @@ mod tests {
                     );
                 }
             }
-        }
-    }
-
-    #[test]
-    fn cube_root_is_exact() {
-        for n in (0..5_000u64).chain([
-            u64::MAX,
-            u64::MAX - 1,
-            1 << 63,
-            (1 << 21) * (1 << 21) * (1 << 21) - 1,
-        ]) {
-            let r = cube_root(n);
-            assert!(u128::from(r).pow(3) <= u128::from(n), "{n}");
-            assert!(u128::from(r + 1).pow(3) > u128::from(n), "{n}");
         }
     }
 }
