@@ -36,9 +36,9 @@
 //! point): at most eight shapes, each solved in closed form, a fixed number of notch-pair
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
 //! checked). Measured (see the README for the commands): 9,058 Cortex-M4 instructions median,
-//! 16,453 at worst over the first 1,000 random moves, 19,684 over 5,000 (a move of 14 cycles
+//! 16,453 at worst over the first 1,000 random moves, 19,680 over 5,000 (a move of 14 cycles
 //! with a huge jerk, whose first candidates fail; over 20,000 moves three moves of 10,323
-//! cycles and one raw unit of jerk take up to 21,595); on the x86
+//! cycles and one raw unit of jerk take up to 21,596); on the x86
 //! development machine a few hundred nanoseconds median, under about 2 µs at worst. Moves the
 //! shapes near the optimum cannot finish (mostly from fractional positions with a jerk of a few
 //! raw units) are planned by [`pure_jerk`] where only the jerk binds, else try up to 24 more

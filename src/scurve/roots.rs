@@ -5,8 +5,8 @@
 ///
 /// On a 64-bit target, by multiplications alone ([`square_root_by_products`]): the library's
 /// `isqrt` there takes three divisions one after the other, the longest chain of waits in the
-/// search's first step (two roots a plan; the planning bench's median plan about 2 % faster
-/// without them). On a 32-bit core the library's own, whose divisions are 32-bit instructions
+/// search's first step (two roots a plan; `SCurve::new` about 1.5 % faster without them,
+/// `tools/ab_planning.sh`). On a 32-bit core the library's own, whose divisions are 32-bit instructions
 /// (a Cortex-M4's `udiv` takes a few cycles) where 64-bit products are three multiplications
 /// each. Both are the exact floor, so the plans are the same.
 #[inline]
