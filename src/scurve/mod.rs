@@ -35,15 +35,15 @@
 //! Planning takes a bounded number of integer operations, the same on every target (no floating
 //! point): at most eight shapes, each solved in closed form, a fixed number of notch-pair
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
-//! checked). Measured (see the README for the commands): 9,058 Cortex-M4 instructions median,
-//! 16,453 at worst over the first 1,000 random moves, 19,680 over 5,000 (a move of 14 cycles
-//! with a huge jerk, whose first candidates fail; over 20,000 moves three moves of 10,323
-//! cycles and one raw unit of jerk take up to 21,596); on the x86
+//! checked). Measured (see the README for the commands): 9,060 Cortex-M4 instructions median,
+//! 16,452 at worst over the first 1,000 random moves, 17,994 over 5,000, 19,004 over 20,000;
+//! over 100,000, 13 moves take more than 20,000 (up to 21,998: twelve of them with one raw unit
+//! of jerk, whose first shapes' remainders do not fit); on the x86
 //! development machine a few hundred nanoseconds median, under about 2 µs at worst. Moves the
 //! shapes near the optimum cannot finish (mostly from fractional positions with a jerk of a few
 //! raw units) are planned by [`pure_jerk`] where only the jerk binds, else try up to 24 more
 //! pairs of ramps around it, then the same shapes with one unit's area more in the remainder,
-//! which costs more (up to about 90,000 Cortex-M4 instructions for such moves). A step is at
+//! which costs more (up to about 70,000 Cortex-M4 instructions for such moves). A step is at
 //! most 33 Cortex-M4 instructions (36 on the cycles after an abrupt stop), 18 on x86.
 
 mod predict;
@@ -340,8 +340,8 @@ impl SCurve {
         let limits = check(&parameters)?;
         // Planned in place: the planner writes the schedule only with a whole plan it has
         // found (every write is a `Schedule::build`, `pulse` or `clear` that succeeds; a
-        // `build` that fails writes nothing, and the fine units are planned aside), so a refused
-        // plan changes nothing — and no 808-byte schedule is cleared and copied in per move.
+        // `build` that fails writes nothing, and a second plan made while one is in place is
+        // made aside), so a refused plan changes nothing — and no 808-byte schedule is cleared and copied in per move.
         #[cfg(debug_assertions)]
         let before = self.schedule;
         let direction =

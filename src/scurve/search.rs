@@ -282,19 +282,37 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
     };
     let mut found = [Shape::default(); MAX_SHAPES];
     let len = shapes(distance, limits, &mut found);
-    let mut planned = fastest_fit(&move_, &found[..len], out);
-    // Moves of a few cycles with a large jerk can be too short for notch pairs: there, two
-    // units of the jerk kept aside take the rest as fine units — tried if no shape fit, or if
-    // only a slower one did in a short move (planned aside, the faster kept).
     let fastest = found[..len].first().map_or(u64::MAX, |shape| shape.cycles);
+    // Moves of a few cycles with a large jerk can be too short for notch pairs: there, two
+    // units of the jerk kept aside take the rest as fine units. In the shortest moves they are
+    // tried first and kept unless a shape is faster: there the shapes' remainders mostly do not
+    // fit, and each failed attempt costs thousands of Cortex-M4 instructions (a move of 15
+    // cycles with a huge jerk took 28,756, now 11,606). In other short moves they are tried if
+    // no shape fit, or if only a slower one did (planned aside, the faster kept).
     let short = fastest < SHORT_MOVE;
-    if limits.jerk > 2 && (!planned || (short && out.plan.total > fastest + 1)) {
-        let mut fine = Schedule::EMPTY;
-        if with_fine_units(&move_, &mut fine) && (!planned || fine.plan.total < out.plan.total) {
-            *out = fine;
-            planned = true;
-        }
-    }
+    let planned =
+        if limits.jerk >= FINE_FIRST_JERK && fastest < FINE_FIRST && with_fine_units(&move_, out) {
+            if out.plan.total > fastest {
+                let mut shaped = Schedule::EMPTY;
+                if fastest_fit(&move_, &found[..len], &mut shaped)
+                    && shaped.plan.total < out.plan.total
+                {
+                    *out = shaped;
+                }
+            }
+            true
+        } else if fastest_fit(&move_, &found[..len], out) {
+            if limits.jerk > 2 && short && out.plan.total > fastest + 1 {
+                let mut fine = Schedule::EMPTY;
+                if with_fine_units(&move_, &mut fine) && fine.plan.total < out.plan.total {
+                    *out = fine;
+                }
+            }
+            true
+        } else {
+            // Nothing planned: the fine units straight into `out`.
+            limits.jerk > 2 && with_fine_units(&move_, out)
+        };
     // Where only the jerk binds and the plan is more than three cycles over the optimum, or
     // missing: notch pairs wherever the jerk has room ([`pure_jerk`]); it keeps a plan it cannot
     // better.
@@ -345,13 +363,14 @@ fn fastest_fit(move_: &Move, found: &[Shape], out: &mut Schedule) -> bool {
                 continue;
             };
             if tried & (1 << (2 * i + k)) == 0
-                && complete_once(candidate, candidate.c, move_, out, &mut failed)
+                && complete_once(candidate, candidate.c, move_, out, &mut failed, false)
             {
                 planned = true;
                 break 'shapes;
             }
             // A single unit has no cruise to end early: one cycle more of cruise leaves the
-            // notch pairs the same remainder (or that and the unit's whole area). Before that,
+            // notch pairs the same remainder (or that and the unit's whole area, which
+            // [`complete`] does not try where it is all that is new). Before that,
             // the later shapes' candidates as fast as this one, at their own cruise (often the
             // next second ramp with a velocity notch, at the same length). None longer than
             // this one, and every candidate tried after it here is at least as long, so the
@@ -371,14 +390,14 @@ fn fastest_fit(move_: &Move, found: &[Shape], out: &mut Schedule) -> bool {
                             continue;
                         }
                         tried |= bit;
-                        if complete_once(early, early.c, move_, out, &mut failed) {
+                        if complete_once(early, early.c, move_, out, &mut failed, false) {
                             planned = true;
                             break 'shapes;
                         }
                     }
                 }
             }
-            if complete_once(candidate, candidate.c + 1, move_, out, &mut failed) {
+            if complete_once(candidate, candidate.c + 1, move_, out, &mut failed, true) {
                 planned = true;
                 break 'shapes;
             }
@@ -412,6 +431,18 @@ pub(super) fn at_velocity_in_one_cycle(
 
 /// A move this many cycles long or more has room for notch pairs wherever a shape fits.
 const SHORT_MOVE: u64 = 100;
+
+/// Moves whose fastest shape is shorter than this are planned with fine units first
+/// ([`search`]): measured on the Cortex-M4 probe, a bound of 24 took the first 5,000 random
+/// moves' worst from 19,680 to 18,011 instructions and nine of the 39 over 20,000 among 100,000
+/// under it, where 100 (every short move) cost moves of 30 to 100 cycles a failed or slower
+/// fine plan first (worst 26,702).
+const FINE_FIRST: u64 = 24;
+
+/// ... and whose jerk is at least this (raw units): with a jerk of a few raw units (what a stop
+/// leaves, [`super::pure_jerk`]'s moves) two units kept aside are most of it, and fine units
+/// first there took the median of 3,000 such moves from 9,770 to 13,969 Cortex-M4 instructions.
+const FINE_FIRST_JERK: u64 = 1 << 16;
 
 /// The plan with two units of jerk, acceleration and velocity kept aside for two fine units,
 /// fastest shape first ([`complete_fine`]).
@@ -483,7 +514,16 @@ fn covered(mix: &Mix, c: u64, notch: u64) -> Option<u64> {
 /// and the rest grows by their areas until the pairs fit. The plan is then the main move less
 /// the pairs: its distance is the distance, to the raw unit, by construction (in builds with
 /// debug assertions [`Schedule::replay`] confirms it, with the limits).
-fn complete(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule) -> bool {
+///
+/// `retried`: the same candidate with phase V one cycle earlier failed (see below for what that
+/// spares).
+fn complete(
+    candidate: &Candidate,
+    c: u64,
+    move_: &Move,
+    out: &mut Schedule,
+    retried: bool,
+) -> bool {
     let mix = &candidate.mix;
     let notch = candidate.notch;
     let Some(over) = covered(mix, c, notch).and_then(|d| d.checked_sub(move_.distance)) else {
@@ -496,6 +536,20 @@ fn complete(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule) -> 
     // kind with the most early units (the widest choice of sums).
     let give_back = (0..4).filter(|&k| early[k] > 0).max_by_key(|&k| early[k]);
     let (area, available) = give_back.map_or((0, 0), |k| (areas[k], early[k]));
+    // A single unit whose cruise ends early here and did not one cycle earlier: the main move
+    // and the remainder are that failed attempt's, and all that is new is giving the unit back
+    // (a remainder grown by its whole area, which the pairs sized for the remainder rarely
+    // take). Not tried: over 100,000 random moves no plan changed, and each such attempt cost a
+    // few thousand Cortex-M4 instructions (26 of the 30 moves over 20,000 came under it).
+    if retried
+        && notch == 0
+        && !move_.with_unit
+        && mix.counts.iter().sum::<u64>() == 1
+        && early.iter().sum::<u64>() == 1
+        && over < area
+    {
+        return false;
+    }
     let main = mix.main_move(c, early);
     let bounds = main.bounds();
     let mut placement = Placement::default();
@@ -545,12 +599,13 @@ fn complete_once(
     move_: &Move,
     out: &mut Schedule,
     failed: &mut Failed,
+    retried: bool,
 ) -> bool {
     let longest_kind = candidate.mix.counts[0] > 0;
     if !longest_kind && failed.contains(&Attempt::of(candidate, c)) {
         return false;
     }
-    if complete(candidate, c, move_, out) {
+    if complete(candidate, c, move_, out, retried) {
         return true;
     }
     if longest_kind {
@@ -675,7 +730,14 @@ fn around(move_: &Move, out: &mut Schedule) -> bool {
                 return false;
             }
             tries += 1;
-            if complete_once(&candidate, candidate.c + extra, move_, out, &mut failed) {
+            if complete_once(
+                &candidate,
+                candidate.c + extra,
+                move_,
+                out,
+                &mut failed,
+                extra == 1,
+            ) {
                 return true;
             }
         }
