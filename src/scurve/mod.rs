@@ -341,7 +341,8 @@ impl SCurve {
         // Planned in place: the planner writes the schedule only with a whole plan it has
         // found (every write is a `Schedule::build`, `pulse` or `clear` that succeeds; a
         // `build` that fails writes nothing, and a second plan made while one is in place is
-        // made aside), so a refused plan changes nothing — and no 808-byte schedule is cleared and copied in per move.
+        // made aside), so a refused plan changes nothing — and no 808-byte schedule is cleared
+        // and copied in per move.
         #[cfg(debug_assertions)]
         let before = self.schedule;
         let direction =

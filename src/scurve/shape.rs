@@ -246,6 +246,11 @@ pub(super) struct Mix {
 }
 
 impl Mix {
+    /// How many units, of every kind.
+    pub fn units(&self) -> u64 {
+        self.counts.iter().sum()
+    }
+
     /// The ramps of each kind.
     pub fn kinds(&self) -> [(u64, u64); 4] {
         let (a, b) = (self.a, self.b);
