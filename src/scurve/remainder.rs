@@ -136,27 +136,45 @@ impl Placement {
         };
         let higher_fits = |n: u64| (bounds.last_rise_start..bounds.first_landing).contains(&n);
         let first_new = notches.len() - new.len();
-        let jerk_fits = new.iter().enumerate().all(|(index, notch)| {
-            notch.impulses().iter().all(|&(cycle, amount)| {
-                // A pair's four impulses fall on four cycles (0 < w < k, checked above), so on
-                // one of them it adds its own ±1 alone; only the other pairs are looked up (none,
-                // for a plan of one pair).
-                let mut added = amount;
-                for (other, pair) in notches.iter().enumerate() {
-                    if other != first_new + index {
-                        for (at, other_amount) in pair.impulses() {
-                            if at == cycle {
-                                added += other_amount;
+        // Where the main move's jerk is known to leave room, |added| ≤ 3 ≤ … is enough (a main
+        // jerk in [0, J] less up to J, or in [−J, 0] plus up to J).
+        let jerk_fits_at = |cycle: u64, added: i64| {
+            let room = (added <= 0 && lower_fits(cycle)) || (added >= 0 && higher_fits(cycle));
+            (room && added.abs() <= limit) || (main.jerk_at(cycle) + added).abs() <= limit
+        };
+        // A pair's four impulses fall on four cycles (0 < w < k, checked above), so on one of
+        // them it adds its own ±1 alone: a plan of one pair has no other to look up.
+        let jerk_fits = if let ([pair], [_]) = (notches, new) {
+            pair.impulses()
+                .iter()
+                .all(|&(cycle, amount)| jerk_fits_at(cycle, amount))
+        } else {
+            // Every pair's impulses, found once, not once for each impulse of the others they
+            // are compared with (on a Cortex-M4 that took a third of a check of three pairs).
+            let mut impulses = [[(0u64, 0i64); 4]; MAX_NOTCHES];
+            for (slot, notch) in impulses.iter_mut().zip(notches) {
+                *slot = notch.impulses();
+            }
+            let impulses = &impulses[..notches.len()];
+            impulses[first_new..]
+                .iter()
+                .enumerate()
+                .all(|(index, own)| {
+                    own.iter().all(|&(cycle, amount)| {
+                        let mut added = amount;
+                        for (other, pair) in impulses.iter().enumerate() {
+                            if other != first_new + index {
+                                for &(at, other_amount) in pair {
+                                    if at == cycle {
+                                        added += other_amount;
+                                    }
+                                }
                             }
                         }
-                    }
-                }
-                // Where the main move's jerk is known to leave room, |added| ≤ 3 ≤ … is enough
-                // (a main jerk in [0, J] less up to J, or in [−J, 0] plus up to J).
-                let room = (added <= 0 && lower_fits(cycle)) || (added >= 0 && higher_fits(cycle));
-                (room && added.abs() <= limit) || (main.jerk_at(cycle) + added).abs() <= limit
-            })
-        });
+                        jerk_fits_at(cycle, added)
+                    })
+                })
+        };
         // The dips: at the first and last cycle of each, the main move's velocity covers them
         // all. Inside, the main move's velocity rises (falls) faster than the dips deepen, on
         // every cycle where the acceleration is at least their number (the tests replay every
@@ -521,7 +539,7 @@ impl Remainder<'_> {
         const PLACEMENTS: [(bool, bool); 3] = [(false, true), (false, false), (true, true)];
         // The most any q ≤ available can make of the remainder.
         let reach = area.saturating_mul(available).saturating_add(left);
-        for placement in PLACEMENTS {
+        for &placement in &PLACEMENTS {
             let room = Room::<C>::new(bounds, placement);
             // A single pair takes w·span ≤ 2·total, and q units only add to the remainder: a
             // larger one needs two pairs.
@@ -550,6 +568,17 @@ impl Remainder<'_> {
             if placement.0 {
                 continue;
             }
+            // The second notch in the cruise: its cycles start at `rise_end − 1` whatever the
+            // width, and end `w` before phase V, so a cruise with no room for a notch of width
+            // 2 has none for any wider, and two pairs (widths `w` and `w + 1 ≥ 2`) never fit.
+            // The moves with a single unit and no cruise (a jerk of one raw unit, most often)
+            // leave here, before the widths' estimates and rooms.
+            if placement.1 {
+                let (first, last) = room.second.at(C::narrow(2));
+                if first > last {
+                    continue;
+                }
+            }
             // No pair as wide as the move fits in it (a notch's window ends before phase V):
             // the widths below are cycles of the move, and so is one more.
             let region = |w: u64| (w < bounds.total).then(|| room.at(C::narrow(w)));
@@ -569,15 +598,19 @@ impl Remainder<'_> {
             let guess = refine(refine(div(estimated, bounds.total.max(1)).max(1)));
             // And half and all of the first ramp, where short moves have room.
             let ramp = bounds.last_rise_start;
+            // (Every width around the guess is at least 1; the ramp's, read from a slice, not
+            // moved out of an array: fewer instructions a width on a Cortex-M4.)
             let around = guess.saturating_sub(1).max(1)..guess + WIDTH_TRIES;
+            let ramp_widths = [ramp / 2, ramp];
             let widths = around.clone().chain(
-                [ramp / 2, ramp]
-                    .into_iter()
-                    .filter(move |w| !around.contains(w)),
+                ramp_widths
+                    .iter()
+                    .copied()
+                    .filter(move |&w| w > 0 && !around.contains(&w)),
             );
             // The widths around the guess are consecutive: one's wider pair is the next one's.
             let mut wider: Option<(u64, Region<C>)> = None;
-            for width in widths.filter(|&w| w > 0) {
+            for width in widths {
                 let known = match wider {
                     Some((w, known)) if w == width => Some(known),
                     _ => region(width),
