@@ -35,9 +35,9 @@
 //! Planning takes a bounded number of integer operations, the same on every target (no floating
 //! point): at most eight shapes, each solved in closed form, a fixed number of notch-pair
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
-//! checked). Measured (see the README for the commands): 8,876 Cortex-M4 instructions median,
-//! 15,703 at worst over the first 1,000 random moves, 17,408 over 5,000, 17,946 over 20,000;
-//! over 100,000, 11 moves take more than 20,000 (up to 20,946: ten of them with one raw unit
+//! checked). Measured (see the README for the commands): 8,846 Cortex-M4 instructions median,
+//! 15,722 at worst over the first 1,000 random moves, 17,424 over 5,000, 17,714 over 20,000;
+//! over 100,000, 8 moves take more than 20,000 (up to 20,470: seven of them with one raw unit
 //! of jerk, whose first shapes' remainders do not fit); on the x86
 //! development machine a few hundred nanoseconds median, under about 2 µs at worst. Moves the
 //! shapes near the optimum cannot finish (mostly from fractional positions with a jerk of a few

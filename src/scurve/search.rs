@@ -530,6 +530,22 @@ fn complete(
     let Some(over) = covered(mix, c, notch).and_then(|d| d.checked_sub(move_.distance)) else {
         return false;
     };
+    // A single unit whose cruise ends early here and did not one cycle earlier: the main move
+    // and the remainder are that failed attempt's, and all that is new is giving the unit back
+    // (a remainder grown by its whole area, which the pairs sized for the remainder rarely
+    // take). Not tried: over 100,000 random moves no plan changed, and each such attempt cost a
+    // few thousand Cortex-M4 instructions (17 of the 30 moves over 20,000 came under it). The
+    // unit ends early, as [`early_units`] has it, where it has a cruise and `over` is at least
+    // its area; the rest is then `over − area`. Decided before the early units are found.
+    if retried && notch == 0 && !move_.with_unit && mix.units() == 1 {
+        let kinds = mix.kinds();
+        if let Some(&(a, b)) = (0..4).find(|&k| mix.counts[k] == 1).map(|k| &kinds[k]) {
+            let area = a * b;
+            if area > 0 && over >= area && over - area < area && c > a + b {
+                return false;
+            }
+        }
+    }
     let jerk = move_.limits.jerk;
     let areas = mix.areas();
     let (mut early, over) = early_units(mix, c, over);
@@ -537,20 +553,6 @@ fn complete(
     // kind with the most early units (the widest choice of sums).
     let give_back = (0..4).filter(|&k| early[k] > 0).max_by_key(|&k| early[k]);
     let (area, available) = give_back.map_or((0, 0), |k| (areas[k], early[k]));
-    // A single unit whose cruise ends early here and did not one cycle earlier: the main move
-    // and the remainder are that failed attempt's, and all that is new is giving the unit back
-    // (a remainder grown by its whole area, which the pairs sized for the remainder rarely
-    // take). Not tried: over 100,000 random moves no plan changed, and each such attempt cost a
-    // few thousand Cortex-M4 instructions (17 of the 30 moves over 20,000 came under it).
-    if retried
-        && notch == 0
-        && !move_.with_unit
-        && mix.units() == 1
-        && early.iter().sum::<u64>() == 1
-        && over < area
-    {
-        return false;
-    }
     let main = mix.main_move(c, early);
     let bounds = main.bounds();
     let mut placement = Placement::default();
