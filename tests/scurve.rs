@@ -663,6 +663,33 @@ fn a_remainder_between_the_notch_pairs_reach_takes_a_unit_more() {
     );
 }
 
+/// Found by the fuzzer: a jerk of one raw unit, the acceleration's least step (2^16 raw) and
+/// 16 counts/cycle, 2^25 + 512 counts less 2^-32 to go. The fastest shape is one unit of ramps
+/// (65,536, 1,048,576), which meets the velocity exactly, so a whole cruise leaves a remainder
+/// of one raw unit, which no notch pair takes (the least is 2), and a cycle more leaves it
+/// again with the unit ending early. The ramps around the optimum then tried a first ramp of
+/// 65,539, longer than the acceleration allows with a jerk of one unit: the unit mix
+/// subtracted past zero there (a panic with overflow checks) and its plan took 33,682,440
+/// cycles. The unit given back, with the pairs sized for its area, is one cycle over the
+/// continuous optimum of 3,211,296; stepped to its end exactly, within the limits.
+#[test]
+fn a_remainder_of_one_raw_unit_gives_the_unit_back() {
+    let p = ScurveParameters {
+        destination: -512,
+        max_velocity: MaxVelocity::from_bits(1 << 20).unwrap(),
+        max_acceleration: ScurveAcceleration::from_bits(1).unwrap(),
+        jerk: Jerk::from_bits(1).unwrap(),
+    };
+    let start = I32F32::from_bits((1 << 57) - 1);
+    moves_within_the_bound(p, start).unwrap();
+    // The same distance from the other side of zero.
+    let p = ScurveParameters {
+        destination: (1 << 25) + 512,
+        ..p
+    };
+    moves_within_the_bound(p, I32F32::from_bits(1)).unwrap();
+}
+
 /// A maximum velocity that the slowest ramps could not reach in whole raw units at the
 /// acceleration limit (V = 16 raw, A = 3 raw, J = 65,536 raw: the peak acceleration is 3J, and no
 /// mix of units with ramps (3, 6), (3, 5), (2, 6), (2, 5) at 3J meets 16·2^16 exactly) is met

@@ -313,17 +313,22 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
     }
     // Then the same shapes with the notch pairs' widths for a remainder grown by a unit's area
     // too ([`Move::with_unit`]): only after the ramps around the optimum, so that every move
-    // planned without them keeps its plan (and its cost), and before the one-cycle ramps.
-    around(&move_, out)
-        || fastest_fit(
-            &Move {
-                with_unit: true,
-                ..move_
-            },
-            &found[..len],
-            out,
-        )
-        || one_cycle_ramps(&move_, out)
+    // planned without them keeps its plan (and its cost), and before the one-cycle ramps —
+    // and after a plan of those ramps more than three cycles over the fastest shape (a single
+    // unit whose remainder is one raw unit, which no pair takes, at each cruise: its ramps of
+    // 65,537 and 65,543 cycles took 33,682,440 cycles where the unit given back and its area
+    // taken by two pairs takes 3,211,297), keeping the faster.
+    let with_unit = Move {
+        with_unit: true,
+        ..move_
+    };
+    if around(&move_, out) {
+        if out.plan.total > fastest.saturating_add(3) {
+            keep_if_faster(out, |aside| fastest_fit(&with_unit, &found[..len], aside));
+        }
+        return true;
+    }
+    fastest_fit(&with_unit, &found[..len], out) || one_cycle_ramps(&move_, out)
 }
 
 /// Plans a second time, with `plan`, into a schedule aside (`out` holds a plan already), and

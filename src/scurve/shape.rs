@@ -287,12 +287,14 @@ impl Mix {
         // jerk < 2^31 and a < 2^24, so no product here leaves 64 bits; checked all the same.
         let full_height = jerk.checked_mul(a)?;
         let peak = full_height.min(acceleration);
-        // Units with the shorter first ramp; with a = 1 they are empty (a − 1 = 0).
+        // Units with the shorter first ramp; with a = 1 they are empty (a − 1 = 0). More than
+        // the jerk's units (`a > ⌊A/J⌋ + 1`, ramps [`super::search`]'s `around` tries): even
+        // all of them short would pass the acceleration, so there is no mix.
         let short = full_height - peak;
         let (long, short) = if a == 1 {
             (peak, 0)
         } else {
-            (jerk - short, short)
+            (jerk.checked_sub(short)?, short)
         };
         let highest = peak.checked_mul(b)?;
         let lowering = highest.checked_sub(velocity)?;
@@ -506,6 +508,21 @@ mod tests {
                     floor.velocity_at(n) <= main.velocity_at(n),
                     "{a} {b} at {n}"
                 );
+            }
+        }
+    }
+
+    /// First ramps longer than the acceleration allows (`a > ⌊A/J⌋ + 1`) have no mix: even
+    /// all `J` units with the shorter ramp `a − 1` would pass it (`J·(a − 1) > A`). With J = 1,
+    /// A = 1: a = 2 is a mix (one unit of ramp 1), a = 3 and 4 are not (nor with J = 3, A = 5
+    /// and a = 4: 3·3 > 5), and none of them panics.
+    #[test]
+    fn first_ramps_past_the_acceleration_have_no_mix() {
+        // One unit (1, 4): its velocity 4.
+        assert!(Mix::solve(2, 4, 1, 1, 4, true).is_some());
+        for (a, jerk, acceleration) in [(3u64, 1u64, 1u64), (4, 1, 1), (4, 3, 5)] {
+            for under in [true, false] {
+                assert_eq!(Mix::solve(a, a + 2, jerk, acceleration, 1, under), None);
             }
         }
     }
