@@ -21,9 +21,9 @@ populate() {
   rm -rf "$2"
   mkdir -p "$2"
   if [ "$1" = . ]; then
-    git ls-files -co --exclude-standard -z | tar --null -T - -c | tar -x -C "$2"
+    git ls-files -co --exclude-standard -z | tar --null -T - -c | tar -x -m -C "$2"
   else
-    git archive "$1" | tar -x -C "$2"
+    git archive "$1" | tar -x -m -C "$2"
   fi
   sed -i "0,/^name = \"profilegen\"\$/s//name = \"$3\"/" "$2/Cargo.toml"
 }

@@ -6,6 +6,12 @@
 //! planning bench's own runs, minutes apart, move by up to 20 %.
 //!
 //! `profilegen-ab-planning [moves (100000)] [sweeps (10)]`
+//!
+//! `profilegen-ab-planning --plans [moves (100000)] [fractional moves (100000)]` times nothing:
+//! it checks that the two builds plan the same moves (`tools/ab_plans.sh`): the planning bench's
+//! random moves by their plans (result, phases, total, peaks), and moves of a few raw units of
+//! jerk from fractional positions (what a stop leaves: the class `pure_jerk` plans) cycle by
+//! cycle, every state of the two runs compared.
 
 use std::hint::black_box;
 use std::time::Instant;
@@ -40,7 +46,96 @@ fn time<R>(best: &mut u64, mut f: impl FnMut() -> R) {
     }
 }
 
+/// The plan of `p` from `start` by both builds, as text (`Err` included), and, for moves of at
+/// most `stepped` cycles, every state stepped to the end.
+fn both_plans(p: profilegen::ScurveParameters, start: i64, stepped: u64) -> (String, String) {
+    use profilegen::ProfileGenerator as _;
+    use profilegen_old::ProfileGenerator as _;
+    let new =
+        profilegen::SCurve::with_position(p, profilegen::fixed::types::I32F32::from_bits(start));
+    let old = profilegen_old::SCurve::with_position(
+        old_parameters(p),
+        profilegen_old::fixed::types::I32F32::from_bits(start),
+    );
+    match (new, old) {
+        (Ok(mut new), Ok(mut old)) => {
+            let (mut a, mut b) = (format!("{:?}", new.plan()), format!("{:?}", old.plan()));
+            if new.duration() <= stepped && a == b {
+                for _ in 0..new.duration() + 2 {
+                    let (x, y) = (new.step(), old.step());
+                    let x = (
+                        x.position.to_bits(),
+                        x.velocity.to_bits(),
+                        x.acceleration.to_bits(),
+                    );
+                    let y = (
+                        y.position.to_bits(),
+                        y.velocity.to_bits(),
+                        y.acceleration.to_bits(),
+                    );
+                    if x != y {
+                        a.push_str(&format!(" state {x:?}"));
+                        b.push_str(&format!(" state {y:?}"));
+                        break;
+                    }
+                }
+            }
+            (a, b)
+        }
+        (new, old) => (
+            format!("{:?}", new.map(|g| g.plan())),
+            format!("{:?}", old.map(|g| g.plan())),
+        ),
+    }
+}
+
+/// `--plans`: the moves whose plans differ between the builds, and how many.
+fn compare_plans(moves: u64, fractional: u64) {
+    use profilegen::format::mc1451a::{Jerk, MaxVelocity, ScurveAcceleration};
+    let mut differ = 0;
+    let mut report = |what: String, (a, b): (String, String)| {
+        if a != b {
+            differ += 1;
+            if differ <= 10 {
+                println!("{what}:\n  new {a}\n  old {b}");
+            }
+        }
+    };
+    for i in 0..moves {
+        let p = moves::scurve_parameters(i);
+        report(format!("move #{i}"), both_plans(p, 0, 0));
+    }
+    // Distances log-uniform over 2 .. 2^17 raw units to a fractional position short of 7 counts,
+    // a jerk of 1 to 15 raw units, the other registers log-uniform (as the Cortex-M4 probe's
+    // `--sub-count-moves`), stepped to the end.
+    for i in 0..fractional {
+        let mut random = moves::SplitMix64::for_move(i ^ 0xF4AC_7100);
+        let distance = random.log_uniform(17).max(2) as i64;
+        let p = profilegen::ScurveParameters {
+            destination: 7,
+            max_velocity: MaxVelocity::from_bits(random.log_uniform(30) as u32).expect("in range"),
+            max_acceleration: ScurveAcceleration::from_bits(random.log_uniform(15) as u16)
+                .expect("in range"),
+            jerk: Jerk::from_bits(1 + (random.next_u64() % 15) as u32).expect("in range"),
+        };
+        report(
+            format!("fractional #{i} ({distance} raw units, {p:?})"),
+            both_plans(p, (7 << 32) - distance, 100_000),
+        );
+    }
+    println!("{moves} random moves, {fractional} from fractional positions: {differ} planned differently");
+    if differ > 0 {
+        std::process::exit(1);
+    }
+}
+
 fn main() {
+    if std::env::args().nth(1).as_deref() == Some("--plans") {
+        let mut counts = std::env::args().skip(2).map(|a| a.parse::<u64>());
+        let moves = counts.next().and_then(Result::ok).unwrap_or(100_000);
+        let fractional = counts.next().and_then(Result::ok).unwrap_or(100_000);
+        return compare_plans(moves, fractional);
+    }
     let mut arguments = std::env::args().skip(1).map(|a| a.parse::<usize>());
     let moves = arguments.next().and_then(Result::ok).unwrap_or(100_000);
     let sweeps = arguments.next().and_then(Result::ok).unwrap_or(10);
