@@ -146,6 +146,11 @@ fn plan(
 ) -> bool {
     let jerk = limits.jerk;
     let mut checks = 0;
+    // One profile and one table of fits, rewritten for each main move tried: a few hundred
+    // bytes each, which a fresh pair per main move cleared and copied (about an instruction a
+    // byte on a Cortex-M4).
+    let mut profile = Profile::new(limits);
+    let mut fits = Fits::EMPTY;
     for total in counts {
         // What two pairs can take at most (spans under the move's length).
         let reach = 2 * WIDEST * total;
@@ -156,7 +161,11 @@ fn plan(
             let Some(square) = (s * s).checked_sub(4 * need) else {
                 continue;
             };
-            let mut b = ((s - square.isqrt()) / 2).max(a);
+            // s < 2^10 (the moves here are under `LONGEST + COUNTS` cycles), so the square and
+            // its root fit 32 bits: the library's 32-bit root, a fraction of the 64-bit one's
+            // cost on a 32-bit core.
+            let root = u64::from(u32::try_from(square).map_or(u32::MAX, u32::isqrt));
+            let mut b = ((s - root) / 2).max(a);
             while b * (s - b) < need {
                 b += 1;
             }
@@ -178,7 +187,7 @@ fn plan(
                     break;
                 }
                 if rest <= reach {
-                    let main = MainMove::of_groups(&[
+                    let groups = [
                         Group {
                             count: jerk - early,
                             a,
@@ -191,9 +200,12 @@ fn plan(
                             b,
                             c: c - 1,
                         },
-                    ]);
-                    let profile = Profile::of(&main, limits, total);
-                    if let Some(placement) = profile.take(rest, apart, &mut checks) {
+                    ];
+                    profile.set(&groups, total);
+                    if let Some(placement) = profile.take(rest, apart, &mut checks, &mut fits) {
+                        // The main move only for the plan found (most candidates fail): a
+                        // [`MainMove`] is a few hundred bytes to clear and fill.
+                        let main = MainMove::of_groups(&groups);
                         let built = out.build(&main, &placement, direction, (a, b));
                         // Checked cycle by cycle by `Profile::fits`; the tests run with debug
                         // assertions, and every plan made here is replayed as well.
@@ -246,12 +258,40 @@ struct Profile {
 }
 
 impl Profile {
-    /// `main` (of `total` cycles, within `limits`): its room, by pieces of constant jerk.
-    fn of(main: &MainMove, limits: Limits64, total: u64) -> Self {
+    /// No main move yet ([`Self::set`] gives it one), within `limits`.
+    fn new(limits: Limits64) -> Self {
+        Self {
+            corners: [(0, 0); 16],
+            corner_count: 0,
+            total: 0,
+            limits,
+            lower: [(0, 0); MAX_INTERVALS],
+            lowers: 0,
+            raise: [(0, 0); MAX_INTERVALS],
+            raises: 0,
+        }
+    }
+
+    /// The main move of `groups` (at most two; those without a unit are left out, as
+    /// [`MainMove::of_groups`] does), of `total` cycles: its room, by pieces of constant jerk.
+    /// Only the entries it counts are written (and read).
+    #[cfg(test)]
+    fn of(groups: &[Group; 2], limits: Limits64, total: u64) -> Self {
+        let mut profile = Self::new(limits);
+        profile.set(groups, total);
+        profile
+    }
+
+    /// As [`Self::of`], in place.
+    fn set(&mut self, groups: &[Group; 2], total: u64) {
+        self.total = total;
+        self.lowers = 0;
+        self.raises = 0;
+        let profile = self;
         // The corners of every group, in order (at most 16: an insertion sort).
-        let mut corners = [(0u64, 0i64); 16];
+        let corners = &mut profile.corners;
         let mut len = 0;
-        for group in main.groups() {
+        for group in groups.iter().filter(|group| group.count > 0) {
             for (cycle, sign) in super::shape::corners(group.a, group.b, group.c) {
                 let change = (cycle, sign * group.count as i64);
                 let mut k = len;
@@ -263,17 +303,9 @@ impl Profile {
                 len += 1;
             }
         }
-        let mut profile = Self {
-            corners,
-            corner_count: len,
-            total,
-            limits,
-            lower: [(0, 0); MAX_INTERVALS],
-            lowers: 0,
-            raise: [(0, 0); MAX_INTERVALS],
-            raises: 0,
-        };
-        let limit = limits.jerk as i64;
+        profile.corner_count = len;
+        let corners = &profile.corners;
+        let limit = profile.limits.jerk as i64;
         let (mut level, mut i, mut from) = (0i64, 0, 0u64);
         while from < total {
             while i < len && corners[i].0 <= from {
@@ -294,7 +326,6 @@ impl Profile {
             }
             from = to;
         }
-        profile
     }
 
     /// The main move's jerk, acceleration and velocity after cycle `n` (raw units; all zero
@@ -359,7 +390,10 @@ impl Profile {
         let (from, to) = (impulses[0].0, impulses[len - 1].0);
         let (mut jerk, mut acceleration, mut velocity, mut next) =
             self.state_after(i64::from(from) - 1);
-        let (mut impulse, mut lowered) = (0, 0i64);
+        // `change`: the pairs' acceleration on cycle `n`, the running sum of their impulses up
+        // to it (a pair's is −1 under its first notch, +1 under its second); `lowered`: their
+        // dip in the velocity, the running sum of that.
+        let (mut impulse, mut change, mut lowered) = (0, 0i64, 0i64);
         for n in from..=to {
             while next < self.corner_count && self.corners[next].0 as i64 <= i64::from(n) {
                 jerk += self.corners[next].1;
@@ -367,25 +401,21 @@ impl Profile {
             }
             // The impulses on this cycle, added up (a pair's may meet another's).
             if impulse < len && impulses[impulse].0 == n {
-                let mut change = 0;
+                let mut on_cycle = 0;
                 while impulse < len && impulses[impulse].0 == n {
-                    change += impulses[impulse].1;
+                    on_cycle += impulses[impulse].1;
                     impulse += 1;
                 }
-                if (jerk + change).abs() > jerk_limit {
+                if (jerk + on_cycle).abs() > jerk_limit {
                     return false;
                 }
+                change += on_cycle;
             }
             if n == to {
                 break;
             }
             acceleration += jerk;
             velocity += acceleration;
-            let mut change = 0;
-            for &(s, w, k) in pairs {
-                change +=
-                    i64::from((s + k..s + k + w).contains(&n)) - i64::from((s..s + w).contains(&n));
-            }
             lowered -= change;
             if (acceleration + change).abs() > acceleration_limit || velocity < lowered {
                 return false;
@@ -437,28 +467,34 @@ impl Fit {
 /// At most this many [`Fit`]s of one width are kept (a main move has at most a handful).
 const MAX_FITS: usize = 12;
 
-/// The [`Fit`]s of a pair of each width from 1 to [`WIDEST`] in a main move.
+/// The [`Fit`]s of a pair of each width from 1 to [`WIDEST`] in a main move (only the first
+/// `lens[w − 1]` of each width are its: the table is rewritten for each main move).
 struct Fits {
     fits: [[Fit; MAX_FITS]; WIDEST as usize],
     lens: [usize; WIDEST as usize],
 }
 
 impl Fits {
+    /// No fits yet ([`Self::fill`] finds them).
+    const EMPTY: Self = Self {
+        fits: [[Fit {
+            starts: (0, 0),
+            raises: (0, 0),
+        }; MAX_FITS]; WIDEST as usize],
+        lens: [0; WIDEST as usize],
+    };
+
     /// For each width: the intervals of starts (a lowering impulse's room, and a raising one's
     /// `w` later) and of raises (a raising impulse's room, and a lowering one's `w` later,
     /// before the last cycle), each pair of them whose spans are not empty.
-    fn of(profile: &Profile) -> Self {
-        let mut fits = Self {
-            fits: [[Fit {
-                starts: (0, 0),
-                raises: (0, 0),
-            }; MAX_FITS]; WIDEST as usize],
-            lens: [0; WIDEST as usize],
-        };
+    fn fill(&mut self, profile: &Profile) {
+        let fits = self;
+        fits.lens = [0; WIDEST as usize];
         let last = profile.total as i32 - 1;
+        // Each width writes what it reads: cleared once, not once a width.
+        let mut starts = [(0, 0); MAX_INTERVALS * 2];
+        let mut raises = [(0, 0); MAX_INTERVALS * 2];
         for w in 1..=WIDEST as i32 {
-            let mut starts = [(0, 0); MAX_INTERVALS * 2];
-            let mut raises = [(0, 0); MAX_INTERVALS * 2];
             let (mut n_starts, mut n_raises) = (0, 0);
             for &lower in profile.lower() {
                 for &raise in profile.raise() {
@@ -489,7 +525,6 @@ impl Fits {
                 }
             }
         }
-        fits
     }
 
     /// The fits of width `w` (1 to [`WIDEST`]).
@@ -515,11 +550,12 @@ impl Profile {
     /// ([`Self::fits`]); counts the candidates checked in `checks`. With `apart`, only pairs
     /// whose impulses fall on distinct cycles (each then has the room its interval gives it);
     /// else the ends of the start ranges, where impulses may meet in room for both.
-    fn take(&self, rest: u64, apart: bool, checks: &mut u32) -> Option<Placement> {
+    fn take(&self, rest: u64, apart: bool, checks: &mut u32, fits: &mut Fits) -> Option<Placement> {
         if rest == 0 {
             return Some(Placement::default());
         }
-        let fits = Fits::of(self);
+        fits.fill(self);
+        let fits = &*fits;
         // Under 6·131 (see `plan`): 32-bit divisions, one instruction each on a Cortex-M4.
         let rest = rest as i32;
         // One pair: w·k = rest.
@@ -551,9 +587,15 @@ impl Profile {
         for w1 in 1..=WIDEST as i32 {
             for w2 in w1..=WIDEST as i32 {
                 for &first in fits.of_width(w1) {
+                    let (lo1, hi1) = first.spans();
                     for &second in fits.of_width(w2) {
-                        let (lo1, hi1) = first.spans();
                         let (lo2, hi2) = second.spans();
+                        // Most pairs of fits cannot take `rest` at all: w₁·k₁ + w₂·k₂ lies in
+                        // [w₁·lo₁ + w₂·lo₂, w₁·hi₁ + w₂·hi₂]. Rejected by multiplications, before
+                        // the divisions below (whose range would be empty: the same result).
+                        if w1 * lo1 + w2 * lo2 > rest || w1 * hi1 + w2 * hi2 < rest {
+                            continue;
+                        }
                         let from = lo1.max(ceil(rest - w2 * hi2, w1));
                         let to = hi1.min((rest - w2 * lo2).div_euclid(w1));
                         for k1 in from..=to.min(from + w2 - 1) {
@@ -671,9 +713,10 @@ mod tests {
             b: 5,
             c,
         };
-        let main = MainMove::of_groups(&[group(4, 11), group(3, 10)]);
+        let groups = [group(4, 11), group(3, 10)];
+        let main = MainMove::of_groups(&groups);
         let total = 3 + 5 + 11;
-        let profile = Profile::of(&main, wide(7), total);
+        let profile = Profile::of(&groups, wide(7), total);
         let (mut jerk, mut acceleration, mut velocity, mut distance) = (0i64, 0i64, 0i64, 0i64);
         assert_eq!(profile.state_after(-1), (0, 0, 0, 0));
         for n in 0..total + 2 {
