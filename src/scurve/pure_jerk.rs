@@ -444,6 +444,9 @@ fn push(intervals: &mut [Interval; MAX_INTERVALS], len: &mut usize, piece: Inter
 struct Fit {
     starts: Interval,
     raises: Interval,
+    /// `w·` [`Self::spans`]: what one pair of the width takes, found once per main move (the
+    /// search for two pairs compares it for every pair of fits: most cannot take the rest).
+    reach: Interval,
 }
 
 impl Fit {
@@ -472,6 +475,8 @@ const MAX_FITS: usize = 12;
 struct Fits {
     fits: [[Fit; MAX_FITS]; WIDEST as usize],
     lens: [usize; WIDEST as usize],
+    /// For each width, the least and the most one pair takes over all its fits (`reach`).
+    reach: [Interval; WIDEST as usize],
 }
 
 impl Fits {
@@ -480,8 +485,10 @@ impl Fits {
         fits: [[Fit {
             starts: (0, 0),
             raises: (0, 0),
+            reach: (0, 0),
         }; MAX_FITS]; WIDEST as usize],
         lens: [0; WIDEST as usize],
+        reach: [(0, 0); WIDEST as usize],
     };
 
     /// For each width: the intervals of starts (a lowering impulse's room, and a raising one's
@@ -490,6 +497,7 @@ impl Fits {
     fn fill(&mut self, profile: &Profile) {
         let fits = self;
         fits.lens = [0; WIDEST as usize];
+        fits.reach = [(i32::MAX, i32::MIN); WIDEST as usize];
         let last = profile.total as i32 - 1;
         // Each width writes what it reads: cleared once, not once a width.
         let mut starts = [(0, 0); MAX_INTERVALS * 2];
@@ -516,11 +524,18 @@ impl Fits {
             let i = w as usize - 1;
             for &starts in &starts[..n_starts] {
                 for &raises in &raises[..n_raises] {
-                    let fit = Fit { starts, raises };
+                    let mut fit = Fit {
+                        starts,
+                        raises,
+                        reach: (0, 0),
+                    };
                     let (lo, hi) = fit.spans();
                     if lo <= hi && fits.lens[i] < MAX_FITS {
+                        fit.reach = (w * lo, w * hi);
                         fits.fits[i][fits.lens[i]] = fit;
                         fits.lens[i] += 1;
+                        let reach = &mut fits.reach[i];
+                        *reach = (reach.0.min(fit.reach.0), reach.1.max(fit.reach.1));
                     }
                 }
             }
@@ -584,18 +599,31 @@ impl Profile {
         }
         // Two pairs: w₁·k₁ + w₂·k₂ = rest, k₁ the first of its interval with the right residue
         // modulo w₂ (at most w₂ values to look at).
+        // Most pairs of fits cannot take `rest` at all: w₁·k₁ + w₂·k₂ lies in [w₁·lo₁ + w₂·lo₂,
+        // w₁·hi₁ + w₂·hi₂]. Rejected by comparisons — all the fits of two widths at once, then
+        // all the second width's with one of the first, then one pair of fits — before the
+        // divisions below (whose range would be empty: the same result).
+        let passes = |(low, high): Interval, (least, most): Interval| {
+            low.saturating_add(least) <= rest && high.saturating_add(most) >= rest
+        };
         for w1 in 1..=WIDEST as i32 {
             for w2 in w1..=WIDEST as i32 {
+                let seconds = fits.reach[w2 as usize - 1];
+                if !passes(fits.reach[w1 as usize - 1], seconds) {
+                    continue;
+                }
                 for &first in fits.of_width(w1) {
-                    let (lo1, hi1) = first.spans();
+                    if !passes(first.reach, seconds) {
+                        continue;
+                    }
+                    // The second pair must take from `rest − w₁·hi₁` to `rest − w₁·lo₁`.
+                    let (needed_low, needed_high) = (rest - first.reach.1, rest - first.reach.0);
                     for &second in fits.of_width(w2) {
-                        let (lo2, hi2) = second.spans();
-                        // Most pairs of fits cannot take `rest` at all: w₁·k₁ + w₂·k₂ lies in
-                        // [w₁·lo₁ + w₂·lo₂, w₁·hi₁ + w₂·hi₂]. Rejected by multiplications, before
-                        // the divisions below (whose range would be empty: the same result).
-                        if w1 * lo1 + w2 * lo2 > rest || w1 * hi1 + w2 * hi2 < rest {
+                        if second.reach.0 > needed_high || second.reach.1 < needed_low {
                             continue;
                         }
+                        let (lo1, hi1) = first.spans();
+                        let (lo2, hi2) = second.spans();
                         let from = lo1.max(ceil(rest - w2 * hi2, w1));
                         let to = hi1.min((rest - w2 * lo2).div_euclid(w1));
                         for k1 in from..=to.min(from + w2 - 1) {
