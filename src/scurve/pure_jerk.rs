@@ -522,15 +522,20 @@ impl Fits {
                 }
             }
             let i = w as usize - 1;
-            for &starts in &starts[..n_starts] {
+            // The first `MAX_FITS` pairs of intervals whose spans are not empty: once that many
+            // are kept, the rest would be passed over, so they are not looked at.
+            'pairs: for &starts in &starts[..n_starts] {
                 for &raises in &raises[..n_raises] {
+                    if fits.lens[i] == MAX_FITS {
+                        break 'pairs;
+                    }
                     let mut fit = Fit {
                         starts,
                         raises,
                         reach: (0, 0),
                     };
                     let (lo, hi) = fit.spans();
-                    if lo <= hi && fits.lens[i] < MAX_FITS {
+                    if lo <= hi {
                         fit.reach = (w * lo, w * hi);
                         fits.fits[i][fits.lens[i]] = fit;
                         fits.lens[i] += 1;
