@@ -38,8 +38,10 @@ use crate::division::{div, div_ceil};
 /// tests found, and the seeded scan of `tests/scurve.rs`), and at 162 moves of 171 to 255 cycles
 /// up to 3.41 (5 of 200,000 from 2^17 to 2^19 raw units); at 260 none (and none of 200,000 from 2^19 to 2^22, where the
 /// search's own pairs have room: worst +2.13). Such a move costs less here than the search
-/// spends failing on it (Cortex-M4: 66,000–79,000 instructions in all, against up to 146,000);
-/// the bound costs no stack ([`Profile::fits`] keeps no table of the move's cycles).
+/// spends failing on it (Cortex-M4: 51,000–64,000 instructions in all for the six moves of
+/// `tests/scurve.rs`, most of it the search's failed attempts before this module, against up
+/// to 146,000 without it); the bound costs no stack ([`Profile::fits`] keeps no table of the
+/// move's cycles).
 const LONGEST: u64 = 260;
 
 /// Cycle counts tried: the optimum's floor and the next three (the bound is the optimum + 3).
