@@ -408,7 +408,7 @@ def measure_planning(probe: Probe, first: int, n: int) -> list[tuple[int, int, t
     return results
 
 
-def measure_sub_count(probe: Probe, n: int, top: int, seed: int = 17) -> None:
+def measure_sub_count(probe: Probe, n: int, top: int, seed: int = 17) -> list[int]:
     """Counts `probe_plan_sub_count` on `n` random moves of the class `pure_jerk` plans: a jerk of
     1 to 15 raw units, a distance log-uniform over 2 .. 2^17 raw units to a fractional position,
     the velocity and acceleration registers log-uniform over their ranges."""
@@ -430,6 +430,7 @@ def measure_sub_count(probe: Probe, n: int, top: int, seed: int = 17) -> None:
     for n_, distance, velocity, acceleration, jerk, total in sorted(results, key=lambda r: -r[0])[:top]:
         print(f"    {n_} instructions: {distance} raw units, V {velocity}, A {acceleration}, J {jerk}; "
               f"{total} cycles")
+    return counts
 
 
 # Stepping ----------------------------------------------------------------------------------------
@@ -1129,6 +1130,10 @@ def main() -> int:
                         help="random moves of under 2^17 raw units with a jerk of 1 to 15 raw units, from "
                              "fractional positions (what stops leave), whose plan is counted (reported; "
                              "default %(default)s)")
+    parser.add_argument("--sub-count-ceiling", type=int,
+                        help="fail when a plan of the --sub-count-moves executes more instructions: a "
+                             "ceiling against regressions while that class is over SPEC §16's budget "
+                             "(issue #11), not the budget")
     parser.add_argument("--functions", type=int, default=8,
                         help="functions listed for the worst plan (default %(default)s)")
     parser.add_argument("--top", type=int, default=5, help="the most expensive plans listed (default 5)")
@@ -1173,8 +1178,9 @@ def main() -> int:
             print(f"    {n:10} {100 * n / worst[1]:5.1f}%  {function}")
 
         print(f"  ({time.monotonic() - planning_started:.1f} s)")
+        sub_counts: list[int] = []
         if args.sub_count_moves:
-            measure_sub_count(probe, args.sub_count_moves, args.top)
+            sub_counts = measure_sub_count(probe, args.sub_count_moves, args.top)
         print("== stepping: probe_step, one call per cycle")
         stepping_started = time.monotonic()
         per_phase: list[list[int]] = [[], [], [], []]
@@ -1329,7 +1335,21 @@ def main() -> int:
     for name, counts_ in circles.items():
         circles_ok &= within(f"one cycle of a circle driven by {name}", counts_, circle_budgets.get(name), "",
                              "cycles")
-    status = 0 if planning_ok and stepping_ok and lines_ok and circles_ok else 1
+    sub_count_ok = True
+    if args.sub_count_ceiling is not None:
+        if not sub_counts:
+            print("FAIL: --sub-count-ceiling without --sub-count-moves", file=sys.stderr)
+            sub_count_ok = False
+        elif max(sub_counts) > args.sub_count_ceiling:
+            print(f"FAIL: planning from fractional positions executes up to {max(sub_counts)} "
+                  f"instructions, over its ceiling of {args.sub_count_ceiling} (a regression: the "
+                  f"ceiling is not SPEC §16's budget, which this class misses, issue #11)", file=sys.stderr)
+            sub_count_ok = False
+        else:
+            over = sum(1 for n in sub_counts if n > 20_000)
+            print(f"ok: planning from fractional positions within its ceiling of {args.sub_count_ceiling} "
+                  f"(worst {max(sub_counts)}; {over} of {len(sub_counts)} over SPEC §16's 20,000, issue #11)")
+    status = 0 if planning_ok and stepping_ok and lines_ok and circles_ok and sub_count_ok else 1
     return status
 
 
