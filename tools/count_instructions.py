@@ -433,6 +433,29 @@ def measure_sub_count(probe: Probe, n: int, top: int, seed: int = 17) -> list[in
     return counts
 
 
+def measure_replans(probe: Probe, n: int, top: int) -> list[int]:
+    """Counts `probe_replan_bits` on the first `n` random moves: each planned in place into a
+    generator at rest on 0 (`SCurve::set_parameters`), the generator reset before each call
+    (uncounted): starting a move as firmware that keeps its generator does."""
+    print(f"== planning in place: probe_replan_bits over moves 0 .. {n - 1} (set_parameters at rest)")
+    results = []
+    for index in range(n):
+        move = probe.move(index)
+        if probe.call("probe_replan_reset").r0 != 0:
+            raise ProbeFailure("probe_replan_reset failed")
+        call = probe.call("probe_replan_bits", *move)
+        if call.u64 == REFUSED:
+            raise ProbeFailure(f"move {index} was refused in place: {describe_move(move)}")
+        results.append((call.instructions, index, move))
+    counts = sorted(r[0] for r in results)
+    over = sum(1 for c in counts if c > 20_000)
+    print(f"  instructions: p50 {percentile(counts, 50)}, p99 {percentile(counts, 99)}, "
+          f"worst {counts[-1]}, mean {statistics.fmean(counts):.0f}; {over} over 20,000")
+    for n_, index, move in sorted(results, key=lambda r: -r[0])[:top]:
+        print(f"    move {index}: {n_} instructions; {describe_move(move)}")
+    return counts
+
+
 # Stepping ----------------------------------------------------------------------------------------
 
 PHASE_NAMES = ("ramp (I-III)", "cruise (IV)", "deceleration (V-VII)", "at rest (after the move)")
@@ -1130,6 +1153,11 @@ def main() -> int:
                         help="random moves of under 2^17 raw units with a jerk of 1 to 15 raw units, from "
                              "fractional positions (what stops leave), whose plan is counted (reported; "
                              "default %(default)s)")
+    parser.add_argument("--replan-moves", type=int, default=0,
+                        help="random moves (the first N of --moves' list) planned in place into a "
+                             "generator at rest, SCurve::set_parameters (reported; default %(default)s)")
+    parser.add_argument("--replan-budget", type=int,
+                        help="fail when a plan of the --replan-moves executes more instructions")
     parser.add_argument("--sub-count-ceiling", type=int,
                         help="fail when a plan of the --sub-count-moves executes more instructions: a "
                              "ceiling against regressions while that class is over SPEC §16's budget "
@@ -1178,6 +1206,9 @@ def main() -> int:
             print(f"    {n:10} {100 * n / worst[1]:5.1f}%  {function}")
 
         print(f"  ({time.monotonic() - planning_started:.1f} s)")
+        replans: list[int] = []
+        if args.replan_moves:
+            replans = measure_replans(probe, args.replan_moves, args.top)
         sub_counts: list[int] = []
         if args.sub_count_moves:
             sub_counts = measure_sub_count(probe, args.sub_count_moves, args.top)
@@ -1320,6 +1351,7 @@ def main() -> int:
     if restarts:
         planning_ok &= within("an S-curve restart (a plan)", restarts, args.plan_budget, "", "restarts")
     planning_ok &= within("the MCX514 S-curve's plan", mcx514_plans, args.mcx514_plan_budget, "", "moves")
+    planning_ok &= within("planning in place (set_parameters)", replans, args.replan_budget, "", "moves")
     stepping_ok = within("one step of SCurve", all_steps, args.step_budget, "", "cycles")
     for name, counts_ in others.items():
         stepping_ok &= within(f"one step of {name}", counts_, args.step_budget, "", "cycles")

@@ -12,6 +12,9 @@
 //! - `probe_step_setup(...)`, `probe_phases(out)`, `probe_step()`: one generator in a static,
 //!   stepped one cycle per call, so every cycle's cost is measured on its own.
 //! - `probe_restart(destination, velocity)`: that generator restarted after a stop.
+//! - `probe_replan_reset()`, `probe_replan_bits(destination, velocity, acceleration, jerk)`: a
+//!   generator at rest on 0, and a move planned into it in place (`set_parameters`), as
+//!   firmware that keeps its generator starts a move.
 //! - `probe_gear_setup(ratio, deceleration)`, `probe_gear_follow(master)`,
 //!   `probe_gear_command(command, value)`: an MC1451A electronic gear (`ElectronicGear`), one
 //!   `follow` per call with the master's count, and its stops and ratio changes.
@@ -235,6 +238,47 @@ pub unsafe extern "C" fn probe_restart(destination: i32, velocity: u32) -> u32 {
     {
         Ok(()) => 0,
         Err(_) => 1,
+    }
+}
+
+/// The generator that `probe_replan_bits` plans into, in place: what firmware that keeps one
+/// generator per axis does to start each move.
+static REPLAN: Slot = Slot(UnsafeCell::new(MaybeUninit::uninit()));
+
+/// Puts the re-planned generator at rest on 0 with nothing to do (a move of no distance), ready
+/// for `probe_replan_bits`: not part of what that call counts.
+#[no_mangle]
+pub extern "C" fn probe_replan_reset() -> u32 {
+    match parameters(0, 1, 1, 1).and_then(SCurve::new) {
+        Ok(axis) => {
+            // SAFETY: single-threaded; no reference to the slot outlives a call.
+            unsafe { (*REPLAN.0.get()).write(axis) };
+            0
+        }
+        Err(_) => 1,
+    }
+}
+
+/// As [`probe_plan_bits`], planned in place into the generator `probe_replan_reset` put at rest
+/// on 0 (`SCurve::set_parameters`: no generator cleared or copied out). Returns the move's total
+/// cycle count, `u64::MAX` when refused.
+///
+/// # Safety
+/// `probe_replan_reset` succeeded before, and no move has been planned since.
+#[no_mangle]
+pub unsafe extern "C" fn probe_replan_bits(
+    destination: i32,
+    velocity: u32,
+    acceleration: u32,
+    jerk: u32,
+) -> u64 {
+    // SAFETY: initialized by probe_replan_reset (the caller's contract); single-threaded.
+    let axis = unsafe { (*REPLAN.0.get()).assume_init_mut() };
+    match parameters(destination, velocity, acceleration, jerk)
+        .and_then(|parameters| axis.set_parameters(parameters))
+    {
+        Ok(()) => black_box(&*axis).duration(),
+        Err(_) => REFUSED,
     }
 }
 
