@@ -16,17 +16,8 @@ b=${2:?usage: tools/ab_planning.sh A B [moves] [sweeps]}
 shift 2
 root=target/ab-planning
 
-# Writes revision $1 (`.`: the working tree) to directory $2 as a package named $3.
-populate() {
-  rm -rf "$2"
-  mkdir -p "$2"
-  if [ "$1" = . ]; then
-    git ls-files -co --exclude-standard -z | tar --null -T - -c | tar -x -m -C "$2"
-  else
-    git archive "$1" | tar -x -m -C "$2"
-  fi
-  sed -i "0,/^name = \"profilegen\"\$/s//name = \"$3\"/" "$2/Cargo.toml"
-}
+# shellcheck source=tools/ab_planning/populate.sh
+source tools/ab_planning/populate.sh
 
 # Runs the binary with $1 as `profilegen` and $2 as `profilegen_old`; prints its line and
 # leaves the ratio of means (the first over the second) in $ratio.

@@ -15,17 +15,8 @@ b=${2:?usage: tools/ab_plans.sh A B [moves] [fractional moves]}
 shift 2
 root=target/ab-planning
 
-# Writes revision $1 (`.`: the working tree) to directory $2 as a package named $3.
-populate() {
-  rm -rf "$2"
-  mkdir -p "$2"
-  if [ "$1" = . ]; then
-    git ls-files -co --exclude-standard -z | tar --null -T - -c | tar -x -m -C "$2"
-  else
-    git archive "$1" | tar -x -m -C "$2"
-  fi
-  sed -i "0,/^name = \"profilegen\"\$/s//name = \"$3\"/" "$2/Cargo.toml"
-}
+# shellcheck source=tools/ab_planning/populate.sh
+source tools/ab_planning/populate.sh
 
 populate "$a" "$root/a" profilegen
 populate "$b" "$root/b" profilegen_old

@@ -623,7 +623,9 @@ impl Profile {
                     if !passes(first.reach, seconds) {
                         continue;
                     }
-                    // The second pair must take from `rest − w₁·hi₁` to `rest − w₁·lo₁`.
+                    // The second pair must take from `rest − w₁·hi₁` to `rest − w₁·lo₁`:
+                    // `passes` with the first fit's part taken out of the loop (calling
+                    // `passes` there measured +160 Cortex-M4 instructions on the worst move).
                     let (needed_low, needed_high) = (rest - first.reach.1, rest - first.reach.0);
                     for &second in fits.of_width(w2) {
                         if second.reach.0 > needed_high || second.reach.1 < needed_low {
