@@ -16,9 +16,10 @@
 //! jerk where they fall — a lowering impulse where the main move's jerk is above `−J`, a raising
 //! one where it is below `J` — and the cycles with room are a few intervals (the phases), so for
 //! each choice of intervals the spans that fit form an interval too ([`Fit`]), found in O(1).
-//! A candidate is then checked cycle by cycle where the pairs change anything ([`Profile::fits`]:
-//! the jerk on the cycles of their impulses, the acceleration and the velocity under their
-//! windows), a few operations a cycle; the schedule is built once, for the plan found.
+//! A candidate is then checked exactly by a fixed number of comparisons ([`Profile::fits`]: the
+//! jerk on the cycles of their impulses, the velocity on the few slow cycles at the move's ends
+//! that a dip could take below zero; the class's limits leave the acceleration and velocity
+//! limits out of reach); the schedule is built once, for the plan found.
 //!
 //! Its cost is bounded: at most [`COUNTS`] cycle counts, for each a few main moves per first ramp
 //! (the second ramps whose distance is just above the move's), at most [`MAX_CHECKS`] candidates
@@ -156,7 +157,7 @@ fn plan(
     for total in counts {
         // What two pairs can take at most (spans under the move's length).
         let reach = 2 * WIDEST * total;
-        for a in 1..=total / 4 {
+        for a in first_ramp(distance, jerk, total)..=total / 4 {
             // a·b·(s − b)·J ≥ D with s = N − a: b(s − b) ≥ ⌈D/(J·a)⌉ from the root's floor up.
             let s = total - a;
             let need = div_ceil(distance, jerk * a);
@@ -232,6 +233,28 @@ fn plan(
     false
 }
 
+/// The shortest first ramp `a` of a main move of `total` cycles that can cover `distance`:
+/// one unit covers `a·b·(s − b)` with `s = total − a`, at most `a·⌊s²/4⌋`, so `J` of them
+/// need `J·a·⌊s²/4⌋ ≥ D`. That grows with `a` up to `total/4` (from `a` to `a + 1` it
+/// changes by `⌊(s − 1)²/4⌋ − a·⌊s/2⌋ ≥ s·(s − 2 − 2a)/4 ≥ 0`, as `s ≥ 3a`), so a binary
+/// search finds it: the first ramps below cannot cover the distance at all, and most of a
+/// long move's are (a quarter of its cycles), each a division in [`plan`].
+fn first_ramp(distance: u64, jerk: u64, total: u64) -> u64 {
+    // J·a·⌊s²/4⌋ < 2^32 · 2^8 · 2^16 (moves here are under 2^9 cycles): no overflow.
+    let covers = |a: u64| jerk * a * ((total - a) * (total - a) / 4) >= distance;
+    let (mut low, mut high) = (1, total / 4 + 1);
+    // The answer is in [low, high]; `high` means none.
+    while low < high {
+        let middle = low + (high - low) / 2;
+        if covers(middle) {
+            high = middle;
+        } else {
+            low = middle + 1;
+        }
+    }
+    low
+}
+
 /// A notch pair as `(start, width, span)`, cycles.
 type Pair = (i32, i32, i32);
 
@@ -242,13 +265,40 @@ type Interval = (i32, i32);
 /// jerk takes at most 13 levels (12 corners), so room comes and goes at most 6 times.
 const MAX_INTERVALS: usize = 7;
 
-/// A main move's jerk changes and the cycles where its jerk has room for one impulse of each
-/// sign: what decides whether notch pairs fit it ([`Self::fits`]).
+/// The most the pairs' dips lower the velocity on any cycle: two pairs, each at most
+/// `min(w, k) ≤` [`WIDEST`] deep. Where the main move is at least this fast, no placement of
+/// pairs can take its velocity below zero.
+const SLOW: i64 = 2 * WIDEST as i64;
+
+/// At most this many cycles at each end of a main move are slower than [`SLOW`]: its velocity
+/// rises by at least one raw unit a cycle until its peak (each unit's acceleration is positive
+/// until then), so only a peak below `SLOW` makes a longer stretch, and then the whole move is
+/// short — `D < SLOW·N` with `N ≤ ⌊∛(32·D/J)⌋ + 3` leaves `N ≤ 18`. A longer stretch (never
+/// seen) is refused, not checked: [`Profile::fits`] is then `false`.
+const MAX_SLOW: usize = 24;
+
+/// At most this many pieces of constant jerk in a main move: its two groups share their ramps
+/// and differ by a cycle of cruise, so their corners fall on at most 12 cycles.
+const MAX_LEVELS: usize = 16;
+
+/// A main move's jerk by pieces, its velocity on the few cycles at each end
+/// slower than [`SLOW`], and the cycles where its jerk has room for one impulse of each sign:
+/// what decides whether notch pairs fit it ([`Self::fits`]).
 #[derive(Debug)]
 struct Profile {
-    /// The main move's jerk changes `(cycle, change)`, in order.
-    corners: [(u64, i64); 16],
-    corner_count: usize,
+    /// The main move's jerk by pieces, `(first cycle, level)`, from cycle 0 on: each lasts until the next
+    /// one's first cycle, the last until the end of the move.
+    levels: [(i32, i64); MAX_LEVELS],
+    level_count: usize,
+    /// Its velocity on cycles `0 .. head_len`, the cycles before the first as fast as [`SLOW`].
+    head: [i64; MAX_SLOW],
+    head_len: usize,
+    /// Its velocity on cycles `total − 1`, `total − 2`, … (`tail_len` of them), the cycles after
+    /// the last as fast as [`SLOW`].
+    tail: [i64; MAX_SLOW],
+    tail_len: usize,
+    /// A slow stretch longer than [`MAX_SLOW`]: nothing is placed.
+    crowded: bool,
     total: u64,
     limits: Limits64,
     /// Where the jerk is above `−J`: a lowering impulse fits.
@@ -263,8 +313,13 @@ impl Profile {
     /// No main move yet ([`Self::set`] gives it one), within `limits`.
     fn new(limits: Limits64) -> Self {
         Self {
-            corners: [(0, 0); 16],
-            corner_count: 0,
+            levels: [(0, 0); MAX_LEVELS],
+            level_count: 0,
+            head: [0; MAX_SLOW],
+            head_len: 0,
+            tail: [0; MAX_SLOW],
+            tail_len: 0,
+            crowded: false,
             total: 0,
             limits,
             lower: [(0, 0); MAX_INTERVALS],
@@ -287,67 +342,143 @@ impl Profile {
     /// As [`Self::of`], in place.
     fn set(&mut self, groups: &[Group; 2], total: u64) {
         self.total = total;
-        self.lowers = 0;
-        self.raises = 0;
-        let profile = self;
-        // The corners of every group, in order (at most 16: an insertion sort).
-        let corners = &mut profile.corners;
-        let mut len = 0;
-        for group in groups.iter().filter(|group| group.count > 0) {
-            for (cycle, sign) in super::shape::corners(group.a, group.b, group.c) {
-                let change = (cycle, sign * group.count as i64);
-                let mut k = len;
-                while k > 0 && corners[k - 1].0 > cycle {
-                    corners[k] = corners[k - 1];
-                    k -= 1;
-                }
-                corners[k] = change;
-                len += 1;
+        // Cycles in 32 bits: the moves here are under 2^9 cycles.
+        let end = total as i32;
+        // The corners of the two groups, merged in order, each cycle with a change starting a
+        // piece. Each group's are in order already (`0 ≤ a ≤ b ≤ a + b ≤ c`: see `plan`), so a
+        // merge of two lists of 8 (an insertion sort of the 16 cost several times as much on a
+        // Cortex-M4).
+        let list = |group: &Group| {
+            let units = group.count as i64;
+            super::shape::corners(group.a, group.b, group.c)
+                .map(|(cycle, change)| (cycle as i32, change * units))
+        };
+        let (first, second) = (list(&groups[0]), list(&groups[1]));
+        let ends = [groups[0].count, groups[1].count].map(|count| if count > 0 { 8 } else { 0 });
+        let (mut i, mut j, mut count) = (0, 0, 0);
+        let (mut level, mut from) = (0i64, 0i32);
+        loop {
+            let next = match (i < ends[0], j < ends[1]) {
+                (true, true) => first[i].0.min(second[j].0),
+                (true, false) => first[i].0,
+                (false, true) => second[j].0,
+                (false, false) => end,
             }
-        }
-        profile.corner_count = len;
-        let corners = &profile.corners;
-        let limit = profile.limits.jerk as i64;
-        let (mut level, mut i, mut from) = (0i64, 0, 0u64);
-        while from < total {
-            while i < len && corners[i].0 <= from {
-                level += corners[i].1;
+            .min(end);
+            if next > from && count < MAX_LEVELS {
+                self.levels[count] = (from, level);
+                count += 1;
+                from = next;
+            }
+            if next >= end {
+                break;
+            }
+            while i < ends[0] && first[i].0 == next {
+                level += first[i].1;
                 i += 1;
             }
-            let to = if i < len {
-                corners[i].0.min(total)
+            while j < ends[1] && second[j].0 == next {
+                level += second[j].1;
+                j += 1;
+            }
+        }
+        self.level_count = count;
+        // The room for each sign of impulse, piece by piece.
+        let limit = self.limits.jerk as i64;
+        self.lowers = 0;
+        self.raises = 0;
+        for k in 0..count {
+            let (start, level) = self.levels[k];
+            let last = if k + 1 < count {
+                self.levels[k + 1].0 - 1
             } else {
-                total
+                end - 1
             };
-            let piece = (from as i32, to as i32 - 1);
             if level > -limit {
-                push(&mut profile.lower, &mut profile.lowers, piece);
+                push(&mut self.lower, &mut self.lowers, (start, last));
             }
             if level < limit {
-                push(&mut profile.raise, &mut profile.raises, piece);
+                push(&mut self.raise, &mut self.raises, (start, last));
             }
-            from = to;
+        }
+        self.slow_ends();
+    }
+
+    /// The main move's velocity on its slow cycles ([`SLOW`]) at each end: from cycle 0 forward
+    /// until it is that fast, and from the end (where the move is at rest: every group's
+    /// changes add up to zero, and so do their acceleration and velocity) backward likewise.
+    /// Between the two it is at least that fast: each group's velocity rises until cycle
+    /// `a + b − 1` and falls from its cruise's end on, and the groups share `a` and `b`, so
+    /// their sum rises, then falls. Most moves' jerk is at least `SLOW` on cycle 0, and so is
+    /// their velocity; with a few units, a few cycles at each end.
+    fn slow_ends(&mut self) {
+        let levels = &self.levels[..self.level_count];
+        let end = self.total as i32;
+        self.crowded = false;
+        self.head_len = 0;
+        self.tail_len = 0;
+        let (mut acceleration, mut velocity) = (0i64, 0i64);
+        let mut piece = 0;
+        for n in 0..end {
+            while piece + 1 < levels.len() && levels[piece + 1].0 <= n {
+                piece += 1;
+            }
+            acceleration += levels[piece].1;
+            velocity += acceleration;
+            if velocity >= SLOW {
+                break;
+            }
+            if self.head_len == MAX_SLOW {
+                self.crowded = true;
+                return;
+            }
+            self.head[self.head_len] = velocity;
+            self.head_len += 1;
+        }
+        // Backward from rest after cycle `end` (its jerk 0: every change made): the state
+        // after cycle `n − 1` is `v − a`, `a − j` of the one after `n`.
+        let (mut jerk, mut acceleration, mut velocity) = (0i64, 0i64, 0i64);
+        let mut piece = levels.len();
+        for n in (0..end).rev() {
+            velocity -= acceleration;
+            acceleration -= jerk;
+            while piece > 0 && levels[piece - 1].0 > n {
+                piece -= 1;
+            }
+            jerk = if piece > 0 { levels[piece - 1].1 } else { 0 };
+            if velocity >= SLOW {
+                break;
+            }
+            if self.tail_len == MAX_SLOW {
+                self.crowded = true;
+                return;
+            }
+            self.tail[self.tail_len] = velocity;
+            self.tail_len += 1;
         }
     }
 
-    /// The main move's jerk, acceleration and velocity after cycle `n` (raw units; all zero
-    /// before cycle 0), and the index of its first change after `n`: in closed form, from the
-    /// changes — a change `c` on cycle `t ≤ n` adds `c` to the jerk, `c·m` to the acceleration
-    /// and `c·m(m + 1)/2` to the velocity, `m = n − t + 1` cycles later. Within the limits (see
-    /// `optimum_floor`): |jerk| ≤ J < 2^31, |acceleration| ≤ A < 2^47, and m < 2^10 (the
-    /// moves here are under [`LONGEST`] + [`COUNTS`] cycles), so every product fits in 64 bits.
-    fn state_after(&self, n: i64) -> (i64, i64, i64, usize) {
-        let (mut jerk, mut acceleration, mut velocity) = (0i64, 0i64, 0i64);
-        let mut next = 0;
-        while next < self.corner_count && self.corners[next].0 as i64 <= n {
-            let (cycle, change) = self.corners[next];
-            let m = n - cycle as i64 + 1;
-            jerk += change;
-            acceleration += change * m;
-            velocity += change * (m * (m + 1) / 2);
-            next += 1;
+    /// The main move's velocity on cycle `n` if it is slower than [`SLOW`] there, else `None`.
+    fn slow_velocity(&self, n: i32) -> Option<i64> {
+        let n = usize::try_from(n).ok()?;
+        let total = self.total as usize;
+        if n < self.head_len {
+            Some(self.head[n])
+        } else if n < total && total - 1 - n < self.tail_len {
+            Some(self.tail[total - 1 - n])
+        } else {
+            None
         }
-        (jerk, acceleration, velocity, next)
+    }
+
+    /// The main move's jerk on cycle `n` (`0 ≤ n < total`).
+    #[cfg(test)]
+    fn jerk_at(&self, n: i32) -> i64 {
+        self.levels[..self.level_count]
+            .iter()
+            .take_while(|&&(from, _)| from <= n)
+            .last()
+            .map_or(0, |&(_, level)| level)
     }
 
     fn lower(&self) -> &[Interval] {
@@ -359,18 +490,26 @@ impl Profile {
     }
 
     /// Whether `pairs` (`(start, width, span)`, each placed by a [`Fit`]) fit the main move:
-    /// the jerk on every cycle with an impulse, the acceleration under every window and the
-    /// velocity under every dip within the limits (elsewhere the main move's are, and the pairs
-    /// change nothing). The distance is right by construction, and the move ends as the main
-    /// move does: every dip ends by its third-last cycle.
+    /// the jerk on every cycle with an impulse, and the velocity under every dip, within the
+    /// limits. A fixed number of comparisons, whatever the move's length:
     ///
-    /// One pass over the cycles the pairs span, from their first impulse to their last, with the
-    /// main move's state there found in closed form ([`Self::state_after`]) and carried on
-    /// cycle by cycle: no table of the move's cycles (which took 4 KB of stack and its clearing
-    /// most of the cost of a plan made here).
+    /// - the jerk changes only on the impulses' cycles (at most 8), where the main move's
+    ///   level is looked up in its pieces;
+    /// - the acceleration and the velocity cannot leave their limits: the class of moves
+    ///   planned here keeps the main move's peaks `J·⌊N/4⌋ + 2` and `J·⌊N²/16⌋` within them
+    ///   ([`optimum_floor`]), and the pairs add at most 2 to the one and only lower the other;
+    /// - the velocity stays at least zero where the main move is at least [`SLOW`] (the pairs'
+    ///   dips are never deeper), so only the few slow cycles at each end under a dip are
+    ///   checked ([`Self::slow_velocity`]).
+    ///
+    /// The distance is right by construction, and the move ends as the main move does: every
+    /// dip ends by its third-last cycle. (This replaced a walk over every cycle the pairs span,
+    /// a few dozen 64-bit operations a cycle on a Cortex-M4.)
     fn fits(&self, pairs: &[Pair]) -> bool {
-        let (jerk_limit, acceleration_limit) =
-            (self.limits.jerk as i64, self.limits.acceleration as i64);
+        if self.crowded {
+            return false;
+        }
+        let jerk_limit = self.limits.jerk as i64;
         // The impulses in order of their cycles (at most 8: an insertion sort).
         let mut impulses = [(0i32, 0i64); 8];
         let mut len = 0;
@@ -388,43 +527,48 @@ impl Profile {
         if len == 0 {
             return true;
         }
-        // The first impulse is a pair's start, the last the end of its window.
-        let (from, to) = (impulses[0].0, impulses[len - 1].0);
-        let (mut jerk, mut acceleration, mut velocity, mut next) =
-            self.state_after(i64::from(from) - 1);
-        // `change`: the pairs' acceleration on cycle `n`, the running sum of their impulses up
-        // to it (a pair's is −1 under its first notch, +1 under its second); `lowered`: their
-        // dip in the velocity, the running sum of that.
-        let (mut impulse, mut change, mut lowered) = (0, 0i64, 0i64);
-        for n in from..=to {
-            while next < self.corner_count && self.corners[next].0 as i64 <= i64::from(n) {
-                jerk += self.corners[next].1;
-                next += 1;
+        // The jerk on each impulse's cycle: the main move's level plus every impulse there (a
+        // pair's may meet another's), the pieces walked once alongside the sorted impulses.
+        let levels = &self.levels[..self.level_count];
+        let (mut piece, mut i) = (0, 0);
+        while i < len {
+            let cycle = impulses[i].0;
+            let mut on_cycle = 0;
+            while i < len && impulses[i].0 == cycle {
+                on_cycle += impulses[i].1;
+                i += 1;
             }
-            // The impulses on this cycle, added up (a pair's may meet another's).
-            if impulse < len && impulses[impulse].0 == n {
-                let mut on_cycle = 0;
-                while impulse < len && impulses[impulse].0 == n {
-                    on_cycle += impulses[impulse].1;
-                    impulse += 1;
-                }
-                if (jerk + on_cycle).abs() > jerk_limit {
-                    return false;
-                }
-                change += on_cycle;
+            while piece + 1 < levels.len() && levels[piece + 1].0 <= cycle {
+                piece += 1;
             }
-            if n == to {
-                break;
-            }
-            acceleration += jerk;
-            velocity += acceleration;
-            lowered -= change;
-            if (acceleration + change).abs() > acceleration_limit || velocity < lowered {
+            let level = levels.get(piece).map_or(0, |&(_, level)| level);
+            if (level + on_cycle).abs() > jerk_limit {
                 return false;
             }
         }
-        true
+        // The velocity on the slow cycles under the dips, from the first impulse to the last
+        // (on which every dip has ended).
+        let (from, to) = (impulses[0].0, impulses[len - 1].0);
+        let total = self.total as i32;
+        let head_end = to.min(self.head_len as i32);
+        let tail_start = from.max(head_end).max(total - self.tail_len as i32);
+        let dips = |n: i32| -> i64 { pairs.iter().map(|&pair| depth(pair, n)).sum() };
+        let covered = |n: i32| {
+            self.slow_velocity(n)
+                .is_none_or(|velocity| velocity >= dips(n))
+        };
+        (from.max(0)..head_end).all(covered) && (tail_start..to).all(covered)
     }
+}
+
+/// How much the pair `(s, w, k)` lowers the velocity on cycle `n`: `(box(w) ∗ box(k))(n − s)`,
+/// the running sum of its acceleration (−1 under its first notch, +1 under its second).
+fn depth((s, w, k): Pair, n: i32) -> i64 {
+    let m = n - s;
+    if m < 0 {
+        return 0;
+    }
+    i64::from((m + 1).min(w).min(k).min(w + k - 1 - m).max(0))
 }
 
 /// Appends `piece` to the intervals, merged with the last one if it continues it.
@@ -740,48 +884,163 @@ mod tests {
         assert_eq!(planned(192, 3).plan.total, 14);
     }
 
-    /// The main move's state after any cycle, in closed form (`Profile::state_after`), against
-    /// the jerk summed cycle by cycle from its changes (for two groups, one a cycle shorter).
+    /// The main move's jerk, acceleration and velocity on every cycle, summed cycle by cycle
+    /// from its groups' changes.
+    fn summed(groups: &[Group; 2], total: u64) -> Vec<(i64, i64, i64)> {
+        let (mut jerk, mut acceleration, mut velocity) = (0i64, 0i64, 0i64);
+        (0..total + 2)
+            .map(|n| {
+                jerk += groups
+                    .iter()
+                    .flat_map(|g| {
+                        crate::scurve::shape::corners(g.a, g.b, g.c).map(|(at, sign)| {
+                            if at == n {
+                                sign * g.count as i64
+                            } else {
+                                0
+                            }
+                        })
+                    })
+                    .sum::<i64>();
+                acceleration += jerk;
+                velocity += acceleration;
+                (jerk, acceleration, velocity)
+            })
+            .collect()
+    }
+
+    /// Main moves of two groups (one a cycle of cruise shorter), small and large.
+    fn main_moves() -> Vec<([Group; 2], u64)> {
+        let mut moves = Vec::new();
+        for (a, b) in [(1, 1), (1, 2), (2, 2), (2, 3), (3, 5), (1, 4)] {
+            for extra in 0..3 {
+                let c = a + b + 1 + extra;
+                for (count, early) in [(1, 0), (1, 1), (3, 0), (2, 2), (4, 3), (7, 0), (5, 2)] {
+                    let group = |count, c| Group { count, a, b, c };
+                    moves.push(([group(count, c), group(early, c - 1)], a + b + c));
+                }
+            }
+        }
+        moves
+    }
+
+    /// The jerk by pieces and the velocity on the slow cycles at each end, against the jerk
+    /// summed cycle by cycle: every cycle slower than [`SLOW`] is found, with its velocity;
+    /// and the groups end at rest with their distance.
     #[test]
-    fn the_state_after_a_cycle_is_the_summed_jerks() {
+    fn the_pieces_and_slow_ends_are_the_summed_jerks() {
+        for (groups, total) in main_moves() {
+            let profile = Profile::of(&groups, wide(7), total);
+            assert!(!profile.crowded, "{groups:?}");
+            let states = summed(&groups, total);
+            for (n, &(jerk, _, velocity)) in states.iter().enumerate().take(total as usize) {
+                let n = n as i32;
+                assert_eq!(profile.jerk_at(n), jerk, "{groups:?}, cycle {n}");
+                let expected = (velocity < SLOW).then_some(velocity);
+                assert_eq!(profile.slow_velocity(n), expected, "{groups:?}, cycle {n}");
+            }
+            // At rest after the last cycle.
+            assert_eq!(states[total as usize], (0, 0, 0), "{groups:?}");
+            assert_eq!(states[total as usize + 1], (0, 0, 0), "{groups:?}");
+        }
+        // By hand: 4·tb(3, 5, 11) + 3·tb(3, 5, 10) covers 4·3·5·11 + 3·3·5·10 = 1,110.
         let group = |count, c| Group {
             count,
             a: 3,
             b: 5,
             c,
         };
-        let groups = [group(4, 11), group(3, 10)];
-        let main = MainMove::of_groups(&groups);
-        let total = 3 + 5 + 11;
-        let profile = Profile::of(&groups, wide(7), total);
-        let (mut jerk, mut acceleration, mut velocity, mut distance) = (0i64, 0i64, 0i64, 0i64);
-        assert_eq!(profile.state_after(-1), (0, 0, 0, 0));
-        for n in 0..total + 2 {
-            jerk += main
-                .groups()
-                .iter()
-                .flat_map(|g| {
-                    crate::scurve::shape::corners(g.a, g.b, g.c).map(|(at, sign)| {
-                        if at == n {
-                            sign * g.count as i64
-                        } else {
-                            0
-                        }
-                    })
+        let states = summed(&[group(4, 11), group(3, 10)], 19);
+        assert_eq!(states.iter().map(|s| s.2).sum::<i64>(), 1_110);
+    }
+
+    /// [`Profile::fits`] against the pairs' jerk, acceleration and velocity summed cycle by
+    /// cycle over the whole move, for every placement of one pair and a sample of two: the
+    /// same answer each time.
+    #[test]
+    fn fits_is_the_cycle_by_cycle_check() {
+        let jerk_limit = 7;
+        let limits = wide(jerk_limit);
+        // Placements checked (one pair, two), and of them those that fit.
+        let mut checked = [0usize; 2];
+        let mut fitting = [0usize; 2];
+        for (groups, total) in main_moves() {
+            if groups[0].count + groups[1].count > jerk_limit {
+                continue;
+            }
+            let profile = Profile::of(&groups, limits, total);
+            let main = summed(&groups, total);
+            let exact = |pairs: &[Pair]| {
+                let (mut jerk, mut acceleration, mut velocity) = (0i64, 0i64, 0i64);
+                (0..total as i32 + 2).all(|n| {
+                    jerk = main[n as usize].0
+                        + pairs
+                            .iter()
+                            .flat_map(|&pair| impulses_of(pair))
+                            .filter(|&(at, _)| at == n)
+                            .map(|(_, change)| change)
+                            .sum::<i64>();
+                    acceleration += jerk;
+                    velocity += acceleration;
+                    jerk.abs() <= jerk_limit as i64
+                        && acceleration.abs() <= limits.acceleration as i64
+                        && velocity >= 0
                 })
-                .sum::<i64>();
-            acceleration += jerk;
-            velocity += acceleration;
-            distance += velocity;
-            let (j, a, v, next) = profile.state_after(n as i64);
-            assert_eq!((j, a, v), (jerk, acceleration, velocity), "after cycle {n}");
-            assert!(profile.corners[..next].iter().all(|&(at, _)| at <= n));
-            assert!(profile.corners[next..profile.corner_count]
-                .iter()
-                .all(|&(at, _)| at > n));
+            };
+            let t = total as i32;
+            // Pairs as a Fit places them: inside the move, ending before its last cycle.
+            let placed: Vec<Pair> = (0..t)
+                .flat_map(|s| (1..=WIDEST as i32).map(move |w| (s, w)))
+                .flat_map(|(s, w)| ((w + 1)..t).map(move |k| (s, w, k)))
+                .filter(|&(s, w, k)| s + k + w < t)
+                .collect();
+            for &pair in &placed {
+                let fits = profile.fits(&[pair]);
+                assert_eq!(fits, exact(&[pair]), "{groups:?}: {pair:?}");
+                checked[0] += 1;
+                fitting[0] += usize::from(fits);
+            }
+            for (i, &first) in placed.iter().enumerate().step_by(5) {
+                for &second in placed[i..].iter().step_by(7) {
+                    let pairs = [first, second];
+                    let fits = profile.fits(&pairs);
+                    assert_eq!(fits, exact(&pairs), "{groups:?}: {pairs:?}");
+                    checked[1] += 1;
+                    fitting[1] += usize::from(fits);
+                }
+            }
         }
-        // At rest at the end, with the distance of the two groups: 4·3·5·11 + 3·3·5·10.
-        assert_eq!((jerk, acceleration, velocity, distance), (0, 0, 0, 1_110));
+        // Both answers, often: the comparison is not of two constants.
+        for (checked, fitting) in checked.into_iter().zip(fitting) {
+            assert!(
+                fitting > checked / 10 && fitting < checked * 9 / 10,
+                "{fitting} of {checked}"
+            );
+        }
+        assert!(checked[0] > 1_000 && checked[1] > 10_000, "{checked:?}");
+    }
+
+    /// The first ramp that can cover the distance is the first of `1..=total/4` with
+    /// `J·a·⌊(total − a)²/4⌋ ≥ D`, found by looking at each in turn.
+    #[test]
+    fn the_shortest_first_ramp_is_the_first_that_covers() {
+        for jerk in [1u64, 2, 7, 1 << 20] {
+            for total in 1..70u64 {
+                let most = jerk * total.pow(3) / 16 + 2;
+                for distance in (1..=most).step_by((most / 500).max(1) as usize) {
+                    let covers = |a: u64| jerk * a * ((total - a).pow(2) / 4) >= distance;
+                    let expected = (1..=total / 4)
+                        .find(|&a| covers(a))
+                        .unwrap_or(total / 4 + 1);
+                    let expected = expected.max(1);
+                    assert_eq!(
+                        first_ramp(distance, jerk, total),
+                        expected,
+                        "{distance} in {total}, J {jerk}"
+                    );
+                }
+            }
+        }
     }
 
     /// `⌊∛(32·D/J)⌋` against its definition, and `None` where the move leaves the class.
