@@ -270,19 +270,12 @@ const MAX_INTERVALS: usize = 7;
 /// pairs can take its velocity below zero.
 const SLOW: i64 = 2 * WIDEST as i64;
 
-/// At most this many cycles at each end of a main move are slower than [`SLOW`]: its velocity
-/// rises by at least one raw unit a cycle until its peak (each unit's acceleration is positive
-/// until then), so only a peak below `SLOW` makes a longer stretch, and then the whole move is
-/// short — `D < SLOW·N` with `N ≤ ⌊∛(32·D/J)⌋ + 3` leaves `N ≤ 18`. A longer stretch (never
-/// seen) is refused, not checked: [`Profile::fits`] is then `false`.
-const MAX_SLOW: usize = 24;
-
 /// At most this many pieces of constant jerk in a main move: its two groups share their ramps
 /// and differ by a cycle of cruise, so their corners fall on at most 12 cycles.
 const MAX_LEVELS: usize = 16;
 
-/// A main move's jerk by pieces, its velocity on the few cycles at each end
-/// slower than [`SLOW`], and the cycles where its jerk has room for one impulse of each sign:
+/// A main move's jerk by pieces, the cycles where its velocity is surely at least [`SLOW`],
+/// and the cycles where its jerk has room for one impulse of each sign:
 /// what decides whether notch pairs fit it ([`Self::fits`]).
 #[derive(Debug)]
 struct Profile {
@@ -290,15 +283,9 @@ struct Profile {
     /// one's first cycle, the last until the end of the move.
     levels: [(i32, i64); MAX_LEVELS],
     level_count: usize,
-    /// Its velocity on cycles `0 .. head_len`, the cycles before the first as fast as [`SLOW`].
-    head: [i64; MAX_SLOW],
-    head_len: usize,
-    /// Its velocity on cycles `total − 1`, `total − 2`, … (`tail_len` of them), the cycles after
-    /// the last as fast as [`SLOW`].
-    tail: [i64; MAX_SLOW],
-    tail_len: usize,
-    /// A slow stretch longer than [`MAX_SLOW`]: nothing is placed.
-    crowded: bool,
+    /// Cycles `[first, last]` on which its velocity is at least [`SLOW`] (see [`Self::set`];
+    /// empty when `first > last`): no dip there needs a look.
+    fast: Interval,
     total: u64,
     limits: Limits64,
     /// Where the jerk is above `−J`: a lowering impulse fits.
@@ -315,11 +302,7 @@ impl Profile {
         Self {
             levels: [(0, 0); MAX_LEVELS],
             level_count: 0,
-            head: [0; MAX_SLOW],
-            head_len: 0,
-            tail: [0; MAX_SLOW],
-            tail_len: 0,
-            crowded: false,
+            fast: (1, 0),
             total: 0,
             limits,
             lower: [(0, 0); MAX_INTERVALS],
@@ -401,74 +384,25 @@ impl Profile {
                 push(&mut self.raise, &mut self.raises, (start, last));
             }
         }
-        self.slow_ends();
-    }
-
-    /// The main move's velocity on its slow cycles ([`SLOW`]) at each end: from cycle 0 forward
-    /// until it is that fast, and from the end (where the move is at rest: every group's
-    /// changes add up to zero, and so do their acceleration and velocity) backward likewise.
-    /// Between the two it is at least that fast: each group's velocity rises until cycle
-    /// `a + b − 1` and falls from its cruise's end on, and the groups share `a` and `b`, so
-    /// their sum rises, then falls. Most moves' jerk is at least `SLOW` on cycle 0, and so is
-    /// their velocity; with a few units, a few cycles at each end.
-    fn slow_ends(&mut self) {
-        let levels = &self.levels[..self.level_count];
-        let end = self.total as i32;
-        self.crowded = false;
-        self.head_len = 0;
-        self.tail_len = 0;
-        let (mut acceleration, mut velocity) = (0i64, 0i64);
-        let mut piece = 0;
-        for n in 0..end {
-            while piece + 1 < levels.len() && levels[piece + 1].0 <= n {
-                piece += 1;
+        // Each unit's velocity is at least `min(n + 1, total − 2 − n, a·b)` on cycle `n`: it
+        // rises by at least one raw unit a cycle from 1 on cycle 0 to `a·b`, and falls likewise
+        // to 1 on cycle `total − 3` (`box(a) ∗ box(b) ∗ box(c)` is symmetric). The first group
+        // has a unit (`J − e ≥ 1`), the other's add to it: so from cycle `SLOW − 1` to cycle
+        // `total − 2 − SLOW` the velocity is at least `SLOW` if `a·b` is.
+        let full = &groups[0];
+        let shares = groups[1].count == 0
+            || (groups[1].a, groups[1].b, groups[1].c + 1) == (full.a, full.b, full.c);
+        self.fast = if full.count > 0 && shares && full.a + full.b + full.c == total {
+            let slow = SLOW as i32;
+            let plateau = i64::try_from(full.a * full.b).unwrap_or(i64::MAX);
+            if plateau >= SLOW {
+                (slow - 1, end - 2 - slow)
+            } else {
+                (1, 0)
             }
-            acceleration += levels[piece].1;
-            velocity += acceleration;
-            if velocity >= SLOW {
-                break;
-            }
-            if self.head_len == MAX_SLOW {
-                self.crowded = true;
-                return;
-            }
-            self.head[self.head_len] = velocity;
-            self.head_len += 1;
-        }
-        // Backward from rest after cycle `end` (its jerk 0: every change made): the state
-        // after cycle `n − 1` is `v − a`, `a − j` of the one after `n`.
-        let (mut jerk, mut acceleration, mut velocity) = (0i64, 0i64, 0i64);
-        let mut piece = levels.len();
-        for n in (0..end).rev() {
-            velocity -= acceleration;
-            acceleration -= jerk;
-            while piece > 0 && levels[piece - 1].0 > n {
-                piece -= 1;
-            }
-            jerk = if piece > 0 { levels[piece - 1].1 } else { 0 };
-            if velocity >= SLOW {
-                break;
-            }
-            if self.tail_len == MAX_SLOW {
-                self.crowded = true;
-                return;
-            }
-            self.tail[self.tail_len] = velocity;
-            self.tail_len += 1;
-        }
-    }
-
-    /// The main move's velocity on cycle `n` if it is slower than [`SLOW`] there, else `None`.
-    fn slow_velocity(&self, n: i32) -> Option<i64> {
-        let n = usize::try_from(n).ok()?;
-        let total = self.total as usize;
-        if n < self.head_len {
-            Some(self.head[n])
-        } else if n < total && total - 1 - n < self.tail_len {
-            Some(self.tail[total - 1 - n])
         } else {
-            None
-        }
+            (1, 0)
+        };
     }
 
     /// The main move's jerk on cycle `n` (`0 ≤ n < total`).
@@ -499,16 +433,14 @@ impl Profile {
     ///   planned here keeps the main move's peaks `J·⌊N/4⌋ + 2` and `J·⌊N²/16⌋` within them
     ///   ([`optimum_floor`]), and the pairs add at most 2 to the one and only lower the other;
     /// - the velocity stays at least zero where the main move is at least [`SLOW`] (the pairs'
-    ///   dips are never deeper), so only the few slow cycles at each end under a dip are
-    ///   checked ([`Self::slow_velocity`]).
+    ///   dips are never deeper), so only the cycles under a dip outside [`Self::fast`] are
+    ///   checked, with the main move's velocity summed from its first cycle or back from its
+    ///   last (a few cycles, unless the move is tiny).
     ///
     /// The distance is right by construction, and the move ends as the main move does: every
     /// dip ends by its third-last cycle. (This replaced a walk over every cycle the pairs span,
     /// a few dozen 64-bit operations a cycle on a Cortex-M4.)
     fn fits(&self, pairs: &[Pair]) -> bool {
-        if self.crowded {
-            return false;
-        }
         let jerk_limit = self.limits.jerk as i64;
         // The impulses in order of their cycles (at most 8: an insertion sort).
         let mut impulses = [(0i32, 0i64); 8];
@@ -546,18 +478,44 @@ impl Profile {
                 return false;
             }
         }
-        // The velocity on the slow cycles under the dips, from the first impulse to the last
-        // (on which every dip has ended).
+        // The velocity under the dips, from the first impulse to the last (on which every
+        // dip has ended), where the main move may be slower than `SLOW`: the cycles before
+        // `fast` summed from cycle 0, those after it back from rest after the last cycle.
         let (from, to) = (impulses[0].0, impulses[len - 1].0);
-        let total = self.total as i32;
-        let head_end = to.min(self.head_len as i32);
-        let tail_start = from.max(head_end).max(total - self.tail_len as i32);
         let dips = |n: i32| -> i64 { pairs.iter().map(|&pair| depth(pair, n)).sum() };
-        let covered = |n: i32| {
-            self.slow_velocity(n)
-                .is_none_or(|velocity| velocity >= dips(n))
-        };
-        (from.max(0)..head_end).all(covered) && (tail_start..to).all(covered)
+        let head_end = to.min(self.fast.0.max(from));
+        if from < head_end {
+            let (mut acceleration, mut velocity, mut piece) = (0i64, 0i64, 0);
+            for n in 0..head_end {
+                while piece + 1 < levels.len() && levels[piece + 1].0 <= n {
+                    piece += 1;
+                }
+                acceleration += levels[piece].1;
+                velocity += acceleration;
+                if n >= from && velocity < dips(n) {
+                    return false;
+                }
+            }
+        }
+        let tail_start = head_end.max(self.fast.1 + 1);
+        if tail_start < to {
+            // The state after cycle `n − 1` is `v − a`, `a − j` of the one after `n`; after the
+            // last cycle the move is at rest, its jerk 0 (every change made).
+            let (mut jerk, mut acceleration, mut velocity) = (0i64, 0i64, 0i64);
+            let mut piece = levels.len();
+            for n in (tail_start..self.total as i32).rev() {
+                velocity -= acceleration;
+                acceleration -= jerk;
+                while piece > 0 && levels[piece - 1].0 > n {
+                    piece -= 1;
+                }
+                jerk = if piece > 0 { levels[piece - 1].1 } else { 0 };
+                if n < to && velocity < dips(n) {
+                    return false;
+                }
+            }
+        }
+        true
     }
 }
 
@@ -924,20 +882,29 @@ mod tests {
         moves
     }
 
-    /// The jerk by pieces and the velocity on the slow cycles at each end, against the jerk
-    /// summed cycle by cycle: every cycle slower than [`SLOW`] is found, with its velocity;
-    /// and the groups end at rest with their distance.
+    /// The jerk by pieces, against the jerk summed cycle by cycle, and the velocity at least
+    /// [`SLOW`] on every cycle of `fast` (not empty for most of these moves); and the groups
+    /// end at rest with their distance.
     #[test]
-    fn the_pieces_and_slow_ends_are_the_summed_jerks() {
-        for (groups, total) in main_moves() {
+    fn the_pieces_and_the_fast_cycles_are_the_summed_jerks() {
+        let mut fast_cycles = 0;
+        let longer = [(3, 5), (4, 6), (2, 9)].into_iter().flat_map(|(a, b)| {
+            [(1, 0), (2, 1)].map(|(count, early)| {
+                let c = a + b + 12;
+                let group = |count, c| Group { count, a, b, c };
+                ([group(count, c), group(early, c - 1)], a + b + c)
+            })
+        });
+        for (groups, total) in main_moves().into_iter().chain(longer) {
             let profile = Profile::of(&groups, wide(7), total);
-            assert!(!profile.crowded, "{groups:?}");
             let states = summed(&groups, total);
             for (n, &(jerk, _, velocity)) in states.iter().enumerate().take(total as usize) {
                 let n = n as i32;
                 assert_eq!(profile.jerk_at(n), jerk, "{groups:?}, cycle {n}");
-                let expected = (velocity < SLOW).then_some(velocity);
-                assert_eq!(profile.slow_velocity(n), expected, "{groups:?}, cycle {n}");
+                if (profile.fast.0..=profile.fast.1).contains(&n) {
+                    assert!(velocity >= SLOW, "{groups:?}, cycle {n}: {velocity}");
+                    fast_cycles += 1;
+                }
             }
             // At rest after the last cycle.
             assert_eq!(states[total as usize], (0, 0, 0), "{groups:?}");
@@ -952,6 +919,7 @@ mod tests {
         };
         let states = summed(&[group(4, 11), group(3, 10)], 19);
         assert_eq!(states.iter().map(|s| s.2).sum::<i64>(), 1_110);
+        assert!(fast_cycles > 200, "{fast_cycles}");
     }
 
     /// [`Profile::fits`] against the pairs' jerk, acceleration and velocity summed cycle by
