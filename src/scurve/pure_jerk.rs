@@ -55,33 +55,54 @@ const WIDEST: u64 = 3;
 /// Candidates checked per pass at most (two passes): the cost stays bounded whatever the move.
 const MAX_CHECKS: u32 = 64;
 
+/// The jerk (raw units) up to which a move of this module's class is planned here before the
+/// search ([`first`]): with one unit of jerk, or two, the search's shapes mostly leave
+/// remainders that its pairs, placed where O(1) inequalities keep the limits, cannot take —
+/// attempt after attempt, each a few thousand Cortex-M4 instructions — where pairs anywhere
+/// the jerk has room can (README, "Planning from fractional positions"). With three or more
+/// units the search's early units take most remainders: planned here first, more moves went
+/// over SPEC §16's budget, not fewer.
+const FIRST_JERK: u64 = 2;
+
+/// Whether [`first`] plans the move: one of this module's class with a jerk of at most
+/// [`FIRST_JERK`].
+pub(super) fn plans_first(distance: u64, limits: Limits64) -> bool {
+    limits.jerk <= FIRST_JERK && floor_if_planned_here(distance, limits).is_some()
+}
+
+/// Plans a move of [`plans_first`]'s here, before the search, with the pairs' impulses on
+/// distinct cycles ([`improve`] tries the rest if the search's plan is then too long): `false`,
+/// and `out` unusable, if no plan was found.
+pub(super) fn first(distance: u64, direction: i64, limits: Limits64, out: &mut Schedule) -> bool {
+    floor_if_planned_here(distance, limits).is_some_and(|floor| {
+        plan(
+            distance,
+            direction,
+            limits,
+            floor.max(3)..=floor + COUNTS - 1,
+            true,
+            out,
+        )
+    })
+}
+
 /// Replaces `out` (the search's plan, if `planned`) with a faster plan if the move is one where
 /// only the jerk binds and the search's plan is more than three cycles over the continuous
-/// optimum, or missing, and a faster one is found. Returns whether `out` holds a plan.
+/// optimum, or missing, and a faster one is found; `apart_tried`: [`first`] tried the pairs on
+/// distinct cycles already. Returns whether `out` holds a plan.
 pub(super) fn improve(
     distance: u64,
     direction: i64,
     limits: Limits64,
-    planned: bool,
+    (planned, apart_tried): (bool, bool),
     out: &mut Schedule,
 ) -> bool {
     // By multiplications alone: most moves leave here.
     let Some(scaled) = scaled_distance(distance, limits.jerk) else {
         return planned;
     };
-    // Within the bound already, by multiplications (no cube root): `total ≤ ⌊∛(32·D/J)⌋ + 3`,
-    // and the optimum is at least that floor (the limits can only lengthen it), exactly when
-    // `(total − 3)³·J ≤ 32·D`.
-    if planned {
-        let least = out.plan.total.saturating_sub(3);
-        let within = least
-            .checked_mul(least)
-            .and_then(|square| square.checked_mul(least))
-            .and_then(|cube| cube.checked_mul(limits.jerk))
-            .is_some_and(|needed| needed <= scaled);
-        if within {
-            return true;
-        }
+    if planned && within_bound(out.plan.total, scaled, limits.jerk) {
+        return true;
     }
     let Some(floor) = optimum_floor(scaled, distance, limits) else {
         return planned;
@@ -96,12 +117,35 @@ pub(super) fn improve(
     // First with the pairs' impulses on distinct cycles (each candidate then mostly fits), then
     // with them at the ends of their ranges, where they may meet. `out` is written only with a
     // plan found.
-    for apart in [true, false] {
+    let passes: &[bool] = if apart_tried {
+        &[false]
+    } else {
+        &[true, false]
+    };
+    for &apart in passes {
         if plan(distance, direction, limits, floor.max(3)..=last, apart, out) {
             return true;
         }
     }
     planned
+}
+
+/// Whether a plan of `total` cycles is within three of the continuous optimum of a move where
+/// only the jerk binds, `scaled` = `32·D` ([`scaled_distance`]), by multiplications (no cube
+/// root): `total ≤ ⌊∛(32·D/J)⌋ + 3`, and the optimum is at least that floor (the limits can
+/// only lengthen it), exactly when `(total − 3)³·J ≤ 32·D`.
+fn within_bound(total: u64, scaled: u64, jerk: u64) -> bool {
+    let least = total.saturating_sub(3);
+    least
+        .checked_mul(least)
+        .and_then(|square| square.checked_mul(least))
+        .and_then(|cube| cube.checked_mul(jerk))
+        .is_some_and(|needed| needed <= scaled)
+}
+
+/// `⌊∛(32·D/J)⌋` ([`optimum_floor`]) if the move is one of this module's class.
+fn floor_if_planned_here(distance: u64, limits: Limits64) -> Option<u64> {
+    optimum_floor(scaled_distance(distance, limits.jerk)?, distance, limits)
 }
 
 /// `32·D`, if below `LONGEST³·J`: the continuous optimum when only the jerk binds,
@@ -823,7 +867,7 @@ mod tests {
     fn planned(distance: u64, jerk: u64) -> Schedule {
         let mut out = Schedule::EMPTY;
         assert!(
-            improve(distance, 1, wide(jerk), false, &mut out),
+            improve(distance, 1, wide(jerk), (false, false), &mut out),
             "{distance}, J {jerk}"
         );
         let replay = out.replay(1, wide(jerk));

@@ -8,7 +8,8 @@
 //! the plan that wins. A last resort (two *fine units*, then ramps of one cycle) covers the few
 //! very short moves with a large jerk that notch pairs have no room in. Where only the jerk binds
 //! and the plan is more than three cycles over the optimum, or missing, [`super::pure_jerk`]
-//! places notch pairs wherever the jerk has room. Before the ramps of one cycle, the ramps around
+//! places notch pairs wherever the jerk has room; with a jerk of one or two raw units it plans
+//! such moves before the shapes are tried. Before the ramps of one cycle, the ramps around
 //! the optimum ([`around`]), then the same shapes once more with the pairs' widths estimated for
 //! the remainder plus one unit's area ([`Move::with_unit`]), which closes the gaps between what
 //! two pairs take when the jerk leaves a single unit.
@@ -81,15 +82,35 @@ impl Attempt {
 }
 
 /// The last two attempts whose remainder did not fit: the duplicates come from neighbouring
-/// shapes, each tried at two cruise lengths in turn.
-#[derive(Debug, Default)]
+/// shapes, each tried at two cruise lengths in turn; and how many attempts were made, of how
+/// many allowed.
+#[derive(Debug)]
 struct Failed {
     /// `None` until written: only the tags are cleared when a search begins.
     attempts: [Option<Attempt>; 2],
     next: usize,
+    /// Attempts made ([`complete_once`] calls).
+    made: u32,
+    /// Attempts allowed: past them every attempt fails at once.
+    allowed: u32,
 }
 
 impl Failed {
+    /// None failed yet, `allowed` attempts to make.
+    fn new(allowed: u32) -> Self {
+        Self {
+            attempts: [None; 2],
+            next: 0,
+            made: 0,
+            allowed,
+        }
+    }
+
+    /// Whether every allowed attempt was made.
+    fn spent(&self) -> bool {
+        self.made >= self.allowed
+    }
+
     fn contains(&self, attempt: &Attempt) -> bool {
         self.attempts
             .iter()
@@ -280,6 +301,12 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
         limits,
         with_unit: false,
     };
+    // Where only a jerk of a raw unit or two binds, notch pairs anywhere the jerk has room
+    // ([`pure_jerk`]) first: the search's shapes mostly leave it remainders it cannot place.
+    let tried_first = pure_jerk::plans_first(distance, limits);
+    if tried_first && pure_jerk::first(distance, direction, limits, out) {
+        return true;
+    }
     let mut found = [Shape::default(); MAX_SHAPES];
     let len = shapes(distance, limits, &mut found);
     let fastest = found[..len].first().map_or(u64::MAX, |shape| shape.cycles);
@@ -308,7 +335,7 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
     // Where only the jerk binds and the plan is more than three cycles over the optimum, or
     // missing: notch pairs wherever the jerk has room ([`pure_jerk`]); it keeps a plan it cannot
     // better.
-    if pure_jerk::improve(distance, direction, limits, planned, out) {
+    if pure_jerk::improve(distance, direction, limits, (planned, tried_first), out) {
         return true;
     }
     // Then the same shapes with the notch pairs' widths for a remainder grown by a unit's area
@@ -343,13 +370,21 @@ fn keep_if_faster(out: &mut Schedule, plan: impl FnOnce(&mut Schedule) -> bool) 
 /// The first of `found` (fastest first) whose remainder fits, into `out`: each shape's
 /// candidates at their own cruise and one cycle more (`false` if none fits).
 fn fastest_fit(move_: &Move, found: &[Shape], out: &mut Schedule) -> bool {
+    fastest_fit_within(move_, found, out, u32::MAX)
+}
+
+/// [`fastest_fit`] making at most `allowed` attempts ([`complete_once`] calls).
+fn fastest_fit_within(move_: &Move, found: &[Shape], out: &mut Schedule, allowed: u32) -> bool {
     let (distance, limits) = (move_.distance, move_.limits);
     let len = found.len();
     let mut planned = false;
     // Candidates tried at their own cruise already, ahead of their turn: bit 2·shape + index.
     let mut tried = 0u16;
-    let mut failed = Failed::default();
+    let mut failed = Failed::new(allowed);
     'shapes: for (i, shape) in found[..len].iter().enumerate() {
+        if failed.spent() {
+            break;
+        }
         // The mix that meets the velocity from below, and — unless it meets it exactly — the
         // one from above with a velocity notch; the faster first (as [`Shape::candidates`],
         // without copying them into an array).
@@ -609,6 +644,10 @@ fn complete_once(
     failed: &mut Failed,
     retried: bool,
 ) -> bool {
+    if failed.spent() {
+        return false;
+    }
+    failed.made += 1;
     let longest_kind = candidate.mix.counts[0] > 0;
     if !longest_kind && failed.contains(&Attempt::of(candidate, c)) {
         return false;
@@ -728,7 +767,7 @@ fn around(move_: &Move, out: &mut Schedule) -> bool {
     let wide = &mut wide[..count];
     wide.sort_unstable_by_key(|shape| shape.cycles);
     let mut tries = 0;
-    let mut failed = Failed::default();
+    let mut failed = Failed::new(u32::MAX);
     for shape in wide.iter() {
         let Some(candidate) = shape.candidate(true, distance, limits) else {
             continue;
