@@ -66,6 +66,7 @@ const FIRST_JERK: u64 = 2;
 
 /// Whether [`first`] plans the move: one of this module's class with a jerk of at most
 /// [`FIRST_JERK`].
+#[inline]
 pub(super) fn plans_first(distance: u64, limits: Limits64) -> bool {
     limits.jerk <= FIRST_JERK && floor_if_planned_here(distance, limits).is_some()
 }
@@ -88,13 +89,13 @@ pub(super) fn first(distance: u64, direction: i64, limits: Limits64, out: &mut S
 
 /// Replaces `out` (the search's plan, if `planned`) with a faster plan if the move is one where
 /// only the jerk binds and the search's plan is more than three cycles over the continuous
-/// optimum, or missing, and a faster one is found; `apart_tried`: [`first`] tried the pairs on
-/// distinct cycles already. Returns whether `out` holds a plan.
+/// optimum, or missing, and a faster one is found (with the pairs at the ends of their ranges
+/// only, if [`first`] tried them on distinct cycles already). Returns whether `out` holds a plan.
 pub(super) fn improve(
     distance: u64,
     direction: i64,
     limits: Limits64,
-    (planned, apart_tried): (bool, bool),
+    planned: bool,
     out: &mut Schedule,
 ) -> bool {
     // By multiplications alone: most moves leave here.
@@ -117,7 +118,7 @@ pub(super) fn improve(
     // First with the pairs' impulses on distinct cycles (each candidate then mostly fits), then
     // with them at the ends of their ranges, where they may meet. `out` is written only with a
     // plan found.
-    let passes: &[bool] = if apart_tried {
+    let passes: &[bool] = if limits.jerk <= FIRST_JERK {
         &[false]
     } else {
         &[true, false]
@@ -134,6 +135,7 @@ pub(super) fn improve(
 /// only the jerk binds, `scaled` = `32·D` ([`scaled_distance`]), by multiplications (no cube
 /// root): `total ≤ ⌊∛(32·D/J)⌋ + 3`, and the optimum is at least that floor (the limits can
 /// only lengthen it), exactly when `(total − 3)³·J ≤ 32·D`.
+#[inline]
 fn within_bound(total: u64, scaled: u64, jerk: u64) -> bool {
     let least = total.saturating_sub(3);
     least
@@ -863,11 +865,13 @@ mod tests {
         }
     }
 
-    /// The plan of `distance` raw units with `jerk`, from this module alone.
+    /// The plan of `distance` raw units with `jerk`, from this module alone: [`first`] where
+    /// the search would call it, then [`improve`] as if the search had found nothing.
     fn planned(distance: u64, jerk: u64) -> Schedule {
         let mut out = Schedule::EMPTY;
+        let first = plans_first(distance, wide(jerk)) && first(distance, 1, wide(jerk), &mut out);
         assert!(
-            improve(distance, 1, wide(jerk), (false, false), &mut out),
+            first || improve(distance, 1, wide(jerk), false, &mut out),
             "{distance}, J {jerk}"
         );
         let replay = out.replay(1, wide(jerk));

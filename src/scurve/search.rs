@@ -82,35 +82,15 @@ impl Attempt {
 }
 
 /// The last two attempts whose remainder did not fit: the duplicates come from neighbouring
-/// shapes, each tried at two cruise lengths in turn; and how many attempts were made, of how
-/// many allowed.
-#[derive(Debug)]
+/// shapes, each tried at two cruise lengths in turn.
+#[derive(Debug, Default)]
 struct Failed {
     /// `None` until written: only the tags are cleared when a search begins.
     attempts: [Option<Attempt>; 2],
     next: usize,
-    /// Attempts made ([`complete_once`] calls).
-    made: u32,
-    /// Attempts allowed: past them every attempt fails at once.
-    allowed: u32,
 }
 
 impl Failed {
-    /// None failed yet, `allowed` attempts to make.
-    fn new(allowed: u32) -> Self {
-        Self {
-            attempts: [None; 2],
-            next: 0,
-            made: 0,
-            allowed,
-        }
-    }
-
-    /// Whether every allowed attempt was made.
-    fn spent(&self) -> bool {
-        self.made >= self.allowed
-    }
-
     fn contains(&self, attempt: &Attempt) -> bool {
         self.attempts
             .iter()
@@ -303,8 +283,9 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
     };
     // Where only a jerk of a raw unit or two binds, notch pairs anywhere the jerk has room
     // ([`pure_jerk`]) first: the search's shapes mostly leave it remainders it cannot place.
-    let tried_first = pure_jerk::plans_first(distance, limits);
-    if tried_first && pure_jerk::first(distance, direction, limits, out) {
+    if pure_jerk::plans_first(distance, limits)
+        && pure_jerk::first(distance, direction, limits, out)
+    {
         return true;
     }
     let mut found = [Shape::default(); MAX_SHAPES];
@@ -335,7 +316,7 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
     // Where only the jerk binds and the plan is more than three cycles over the optimum, or
     // missing: notch pairs wherever the jerk has room ([`pure_jerk`]); it keeps a plan it cannot
     // better.
-    if pure_jerk::improve(distance, direction, limits, (planned, tried_first), out) {
+    if pure_jerk::improve(distance, direction, limits, planned, out) {
         return true;
     }
     // Then the same shapes with the notch pairs' widths for a remainder grown by a unit's area
@@ -370,21 +351,13 @@ fn keep_if_faster(out: &mut Schedule, plan: impl FnOnce(&mut Schedule) -> bool) 
 /// The first of `found` (fastest first) whose remainder fits, into `out`: each shape's
 /// candidates at their own cruise and one cycle more (`false` if none fits).
 fn fastest_fit(move_: &Move, found: &[Shape], out: &mut Schedule) -> bool {
-    fastest_fit_within(move_, found, out, u32::MAX)
-}
-
-/// [`fastest_fit`] making at most `allowed` attempts ([`complete_once`] calls).
-fn fastest_fit_within(move_: &Move, found: &[Shape], out: &mut Schedule, allowed: u32) -> bool {
     let (distance, limits) = (move_.distance, move_.limits);
     let len = found.len();
     let mut planned = false;
     // Candidates tried at their own cruise already, ahead of their turn: bit 2·shape + index.
     let mut tried = 0u16;
-    let mut failed = Failed::new(allowed);
+    let mut failed = Failed::default();
     'shapes: for (i, shape) in found[..len].iter().enumerate() {
-        if failed.spent() {
-            break;
-        }
         // The mix that meets the velocity from below, and — unless it meets it exactly — the
         // one from above with a velocity notch; the faster first (as [`Shape::candidates`],
         // without copying them into an array).
@@ -644,10 +617,6 @@ fn complete_once(
     failed: &mut Failed,
     retried: bool,
 ) -> bool {
-    if failed.spent() {
-        return false;
-    }
-    failed.made += 1;
     let longest_kind = candidate.mix.counts[0] > 0;
     if !longest_kind && failed.contains(&Attempt::of(candidate, c)) {
         return false;
@@ -767,7 +736,7 @@ fn around(move_: &Move, out: &mut Schedule) -> bool {
     let wide = &mut wide[..count];
     wide.sort_unstable_by_key(|shape| shape.cycles);
     let mut tries = 0;
-    let mut failed = Failed::new(u32::MAX);
+    let mut failed = Failed::default();
     for shape in wide.iter() {
         let Some(candidate) = shape.candidate(true, distance, limits) else {
             continue;
