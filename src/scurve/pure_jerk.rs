@@ -627,6 +627,10 @@ struct Fits {
     lens: [usize; WIDEST as usize],
     /// For each width, the least and the most one pair takes over all its fits (`reach`).
     reach: [Interval; WIDEST as usize],
+    /// Scratch for [`Self::fill`]: a width's intervals of starts and of raises (each written
+    /// before it is read; kept here, written once per plan, not cleared for every main move).
+    starts: [Interval; MAX_INTERVALS * 2],
+    raises: [Interval; MAX_INTERVALS * 2],
 }
 
 impl Fits {
@@ -639,6 +643,8 @@ impl Fits {
         }; MAX_FITS]; WIDEST as usize],
         lens: [0; WIDEST as usize],
         reach: [(0, 0); WIDEST as usize],
+        starts: [(0, 0); MAX_INTERVALS * 2],
+        raises: [(0, 0); MAX_INTERVALS * 2],
     };
 
     /// For each width: the intervals of starts (a lowering impulse's room, and a raising one's
@@ -649,9 +655,7 @@ impl Fits {
         fits.lens = [0; WIDEST as usize];
         fits.reach = [(i32::MAX, i32::MIN); WIDEST as usize];
         let last = profile.total as i32 - 1;
-        // Each width writes what it reads: cleared once, not once a width.
-        let mut starts = [(0, 0); MAX_INTERVALS * 2];
-        let mut raises = [(0, 0); MAX_INTERVALS * 2];
+        let (starts, raises) = (&mut fits.starts, &mut fits.raises);
         for w in 1..=WIDEST as i32 {
             let (mut n_starts, mut n_raises) = (0, 0);
             for &lower in profile.lower() {
