@@ -21,6 +21,11 @@
 //! that a dip could take below zero; the class's limits leave the acceleration and velocity
 //! limits out of reach); the schedule is built once, for the plan found.
 //!
+//! The search calls it after its shapes, where their plan is more than three cycles over the
+//! optimum or missing ([`improve`]), or before them where the jerk is one or two raw units
+//! ([`first`], the pass with the pairs' impulses on distinct cycles; [`improve`] makes the
+//! other if the search's plan then needs it).
+//!
 //! Its cost is bounded: at most [`COUNTS`] cycle counts, for each a few main moves per first ramp
 //! (the second ramps whose distance is just above the move's), at most [`MAX_CHECKS`] candidates
 //! checked per pass and two passes.
