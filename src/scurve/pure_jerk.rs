@@ -373,7 +373,7 @@ impl Profile {
         profile
     }
 
-    /// As [`Self::of`], in place.
+    /// As `Profile::of` (the tests' constructor), in place.
     fn set(&mut self, groups: &[Group; 2], total: u64) {
         self.total = total;
         // Cycles in 32 bits: the moves here are under 2^9 cycles.
