@@ -34,6 +34,7 @@ use super::remainder::{Notch, Placement};
 use super::roots::cube_root;
 use super::schedule::{Limits64, Schedule};
 use super::shape::{Group, MainMove};
+use crate::bisect::last_true;
 use crate::division::{div, div_ceil};
 
 /// Moves whose continuous optimum is under this many cycles are tried here: the cost of a try
@@ -69,27 +70,22 @@ const MAX_CHECKS: u32 = 64;
 /// over SPEC §16's budget, not fewer.
 const FIRST_JERK: u64 = 2;
 
-/// Whether [`first`] plans the move: one of this module's class with a jerk of at most
-/// [`FIRST_JERK`].
-#[inline]
-pub(super) fn plans_first(distance: u64, limits: Limits64) -> bool {
-    limits.jerk <= FIRST_JERK && floor_if_planned_here(distance, limits).is_some()
-}
-
-/// Plans a move of [`plans_first`]'s here, before the search, with the pairs' impulses on
-/// distinct cycles ([`improve`] tries the rest if the search's plan is then too long): `false`,
-/// and `out` unusable, if no plan was found.
+/// Plans a move of this module's class with a jerk of at most [`FIRST_JERK`] here, before the
+/// search, with the pairs' impulses on distinct cycles ([`improve`] tries the rest if the
+/// search's plan is then too long): `false`, and `out` unusable, if no plan was found or the
+/// move is not one of them.
 pub(super) fn first(distance: u64, direction: i64, limits: Limits64, out: &mut Schedule) -> bool {
-    floor_if_planned_here(distance, limits).is_some_and(|floor| {
-        plan(
-            distance,
-            direction,
-            limits,
-            floor.max(3)..=floor + COUNTS - 1,
-            true,
-            out,
-        )
-    })
+    limits.jerk <= FIRST_JERK
+        && floor_if_planned_here(distance, limits).is_some_and(|floor| {
+            plan(
+                distance,
+                direction,
+                limits,
+                floor.max(3)..=floor + COUNTS - 1,
+                true,
+                out,
+            )
+        })
 }
 
 /// Replaces `out` (the search's plan, if `planned`) with a faster plan if the move is one where
@@ -293,17 +289,9 @@ fn plan(
 fn first_ramp(distance: u64, jerk: u64, total: u64) -> u64 {
     // J·a·⌊s²/4⌋ < 2^32 · 2^8 · 2^16 (moves here are under 2^9 cycles): no overflow.
     let covers = |a: u64| jerk * a * ((total - a) * (total - a) / 4) >= distance;
-    let (mut low, mut high) = (1, total / 4 + 1);
-    // The answer is in [low, high]; `high` means none.
-    while low < high {
-        let middle = low + (high - low) / 2;
-        if covers(middle) {
-            high = middle;
-        } else {
-            low = middle + 1;
-        }
-    }
-    low
+    // The last ramp that does not cover it (0 does not; `total/4 + 1`, past the ramps, is taken
+    // to), and the next.
+    last_true(0, total / 4 + 1, |a| !covers(a)) + 1
 }
 
 /// A notch pair as `(start, width, span)`, cycles.
@@ -521,9 +509,7 @@ impl Profile {
                 on_cycle += impulses[i].1;
                 i += 1;
             }
-            while piece + 1 < levels.len() && levels[piece + 1].0 <= cycle {
-                piece += 1;
-            }
+            piece = piece_holding(levels, piece, cycle);
             let level = levels.get(piece).map_or(0, |&(_, level)| level);
             if (level + on_cycle).abs() > jerk_limit {
                 return false;
@@ -538,9 +524,7 @@ impl Profile {
         if from < head_end {
             let (mut acceleration, mut velocity, mut piece) = (0i64, 0i64, 0);
             for n in 0..head_end {
-                while piece + 1 < levels.len() && levels[piece + 1].0 <= n {
-                    piece += 1;
-                }
+                piece = piece_holding(levels, piece, n);
                 acceleration += levels[piece].1;
                 velocity += acceleration;
                 if n >= from && velocity < dips(n) {
@@ -568,6 +552,15 @@ impl Profile {
         }
         true
     }
+}
+
+/// The piece of `levels` (`(first cycle, level)`, in order) that holds cycle `n`, looked for
+/// from `piece` on (`n` at or past that piece's first cycle).
+fn piece_holding(levels: &[(i32, i64)], mut piece: usize, n: i32) -> usize {
+    while piece + 1 < levels.len() && levels[piece + 1].0 <= n {
+        piece += 1;
+    }
+    piece
 }
 
 /// How much the pair `(s, w, k)` lowers the velocity on cycle `n`: `(box(w) ∗ box(k))(n − s)`,
@@ -878,9 +871,9 @@ mod tests {
     /// the search would call it, then [`improve`] as if the search had found nothing.
     fn planned(distance: u64, jerk: u64) -> Schedule {
         let mut out = Schedule::EMPTY;
-        let first = plans_first(distance, wide(jerk)) && first(distance, 1, wide(jerk), &mut out);
         assert!(
-            first || improve(distance, 1, wide(jerk), false, &mut out),
+            first(distance, 1, wide(jerk), &mut out)
+                || improve(distance, 1, wide(jerk), false, &mut out),
             "{distance}, J {jerk}"
         );
         let replay = out.replay(1, wide(jerk));

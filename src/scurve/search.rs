@@ -283,9 +283,7 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
     };
     // Where only a jerk of a raw unit or two binds, notch pairs anywhere the jerk has room
     // ([`pure_jerk`]) first: the search's shapes mostly leave it remainders it cannot place.
-    if pure_jerk::plans_first(distance, limits)
-        && pure_jerk::first(distance, direction, limits, out)
-    {
+    if pure_jerk::first(distance, direction, limits, out) {
         return true;
     }
     let mut found = [Shape::default(); MAX_SHAPES];
