@@ -1,5 +1,5 @@
-//! Bisection over integers: the one search the trapezoid's and the S-curve's planners share
-//! wherever a condition is monotone in a cycle count or a rate.
+//! Bisection over integers: the one search the trapezoid's and the S-curve's planners and the
+//! predictions share wherever a condition is monotone in a cycle count or a rate.
 
 use num_traits::PrimInt;
 

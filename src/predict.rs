@@ -24,6 +24,7 @@
 
 use fixed::types::I32F32;
 
+use crate::bisect::last_true;
 use crate::State;
 
 /// At most this many segments in a prediction: an S-curve's runs (45, its end marker included),
@@ -379,17 +380,14 @@ impl Prediction {
         if low > high || !reached(high) {
             return None;
         }
-        // The first k in low ..= high with reached(k): reached is false before it, true after.
-        let (mut low, mut high) = (low, high);
-        while low < high {
-            let middle = low + (high - low) / 2;
-            if reached(middle) {
-                high = middle;
-            } else {
-                low = middle + 1;
-            }
-        }
-        Some(segment.start + low)
+        // The first k in low ..= high with reached(k): reached is false before it, true after
+        // (so after the last k before `high` where it is false).
+        let first = if reached(low) {
+            low
+        } else {
+            last_true(low, high, |k| !reached(k)) + 1
+        };
+        Some(segment.start + first)
     }
 
     /// [`Self::first_cycle_at`] within one segment of a future that reverses: its velocity is
