@@ -202,9 +202,8 @@ fn plan(
     let mut profile = Profile::new(limits);
     let mut fits = Fits::EMPTY;
     for total in counts {
-        // What two pairs can take at most (spans under the move's length).
-        let reach = 2 * WIDEST * total;
         for a in first_ramp(distance, jerk, total)..=total / 4 {
+            let reach = reach(total, a);
             // a·b·(s − b)·J ≥ D with s = N − a: b(s − b) ≥ ⌈D/(J·a)⌉ from the root's floor up.
             let s = total - a;
             let need = div_ceil(distance, jerk * a);
@@ -278,6 +277,19 @@ fn plan(
         }
     }
     false
+}
+
+/// What two notch pairs can take at most off a main move of `total` cycles whose ramps are `a`
+/// cycles (with widths up to [`WIDEST`]): each `w·k` with a span `k ≤ total − 2a − 1 + w`. Both
+/// raising impulses of a pair, on `s + w` and `s + k`, need room, which is on `[a, c + b)`
+/// alone: before it every unit's jerk is +1 (the two groups share their ramps), from it on +1
+/// again (or, on the last cycle only, where a raise has no cycle left for the lowering impulse
+/// after it, all but the early units'). So `s ≥ a − w`, `s + k < c + b`, and
+/// `c + b − a = total − 2a` for every `b`. (The span bounded by `total` alone let through main
+/// moves no pairs can finish: about half of [`Profile::set`]'s and [`Fits::fill`]'s work, a
+/// thousand Cortex-M4 instructions or more each.)
+fn reach(total: u64, a: u64) -> u64 {
+    2 * WIDEST * (total - 2 * a - 1 + WIDEST)
 }
 
 /// The shortest first ramp `a` of a main move of `total` cycles that can cover `distance`:
@@ -930,6 +942,42 @@ mod tests {
             }
         }
         moves
+    }
+
+    /// [`reach`]'s bound, against every pair whose four impulses each have room in the main
+    /// move's jerk summed cycle by cycle (what a [`Fit`] places), widths up to [`WIDEST`]:
+    /// its span is at most `total − 2a − 1 + w`, and that bound is met.
+    #[test]
+    fn no_pair_spans_past_the_reach() {
+        let mut met = 0;
+        for (groups, total) in main_moves() {
+            let jerk = (groups[0].count + groups[1].count) as i64;
+            let main = summed(&groups, total);
+            let level = |n: i32| main[n as usize].0;
+            let (t, a) = (total as i32, groups[0].a as i32);
+            let bound = |w: i32| t - 2 * a - 1 + w;
+            let mut longest = i32::MIN;
+            for s in 0..t {
+                for w in 1..=WIDEST as i32 {
+                    for k in 1..t {
+                        let end = s + k + w;
+                        let room = k != w
+                            && end < t
+                            && level(s) > -jerk
+                            && level(s + w) < jerk
+                            && level(s + k) < jerk
+                            && level(end) > -jerk;
+                        if room {
+                            assert!(k <= bound(w), "{groups:?}: {:?}", (s, w, k));
+                            longest = longest.max(k - bound(w));
+                            assert!(2 * i64::from(w * k) <= reach(total, groups[0].a) as i64);
+                        }
+                    }
+                }
+            }
+            met += usize::from(longest == 0);
+        }
+        assert!(met > 10, "{met}");
     }
 
     /// The jerk by pieces, against the jerk summed cycle by cycle, and the velocity at least
