@@ -363,9 +363,9 @@ impl Profile {
         }
     }
 
-    /// The main move of `groups` (at most two; those without a unit are left out, as
-    /// [`MainMove::of_groups`] does), of `total` cycles: its room, by pieces of constant jerk.
-    /// Only the entries it counts are written (and read).
+    /// The main move of `groups` — units of `tb(a, b, c)` (at least one) and units of
+    /// `tb(a, b, c − 1)` (any, none included), as [`plan`] makes them — of `total` cycles: its
+    /// room, by pieces of constant jerk. Only the entries it counts are written (and read).
     #[cfg(test)]
     fn of(groups: &[Group; 2], limits: Limits64, total: u64) -> Self {
         let mut profile = Self::new(limits);
@@ -378,44 +378,60 @@ impl Profile {
         self.total = total;
         // Cycles in 32 bits: the moves here are under 2^9 cycles.
         let end = total as i32;
-        // The corners of the two groups, merged in order, each cycle with a change starting a
-        // piece. Each group's are in order already (`0 ≤ a ≤ b ≤ a + b ≤ c`: see `plan`), so a
-        // merge of two lists of 8 (an insertion sort of the 16 cost several times as much on a
-        // Cortex-M4).
-        let list = |group: &Group| {
-            let units = group.count as i64;
-            super::shape::corners(group.a, group.b, group.c)
-                .map(|(cycle, change)| (cycle as i32, change * units))
-        };
-        let (first, second) = (list(&groups[0]), list(&groups[1]));
-        let ends = [groups[0].count, groups[1].count].map(|count| if count > 0 { 8 } else { 0 });
-        let (mut i, mut j, mut count) = (0, 0, 0);
-        let (mut level, mut from) = (0i64, 0i32);
-        loop {
-            let next = match (i < ends[0], j < ends[1]) {
-                (true, true) => first[i].0.min(second[j].0),
-                (true, false) => first[i].0,
-                (false, true) => second[j].0,
-                (false, false) => end,
-            }
-            .min(end);
-            if next > from && count < MAX_LEVELS {
-                self.levels[count] = (from, level);
-                count += 1;
-                from = next;
-            }
-            if next >= end {
+        let [full, early] = groups;
+        debug_assert!(
+            early.count == 0 || (early.a, early.b, early.c + 1) == (full.a, full.b, full.c),
+            "{groups:?}"
+        );
+        let (a, b, c) = (full.a as i32, full.b as i32, full.c as i32);
+        let (units, early_units) = (full.count as i64, early.count as i64);
+        let jerk = units + early_units;
+        // The corners of both groups in the order of their cycles, written down rather than
+        // merged (a merge of two lists of eight cost about 1,300 Cortex-M4 instructions a main
+        // move): the ramps' four, shared, then the last four of each group, the early group's
+        // one cycle before the full group's. Those interleave, `E₀ M₀ E₁ M₁ E₂ M₂ E₃ M₃`, as
+        // `Mᵢ₊₁ − Mᵢ ≥ 1` puts `Eᵢ₊₁ = Mᵢ₊₁ − 1` at or after `Mᵢ` — but for `a = b`, where
+        // `M₁ = M₂` and `E₁ = E₂`: then both early corners come first.
+        let mut corners = [
+            (0, jerk),
+            (a, -jerk),
+            (b, -jerk),
+            (a + b, jerk),
+            (c - 1, -early_units),
+            (c, -units),
+            (c - 1 + a, early_units),
+            (c + a, units),
+            (c - 1 + b, early_units),
+            (c + b, units),
+            (c - 1 + a + b, -early_units),
+            (c + a + b, -units),
+        ];
+        if a == b {
+            corners.swap(7, 8);
+        }
+        // (With no early unit there may be no cruise either: its corners are no changes.)
+        debug_assert!(corners
+            .windows(2)
+            .all(|pair| pair[0].0 <= pair[1].0 || pair[0].1 == 0 || pair[1].1 == 0));
+        // Each cycle with a change starts a piece; changes on one cycle add up (the early
+        // group's, when it has no unit, are none).
+        let (mut count, mut level, mut from) = (0, 0i64, 0i32);
+        for (cycle, change) in corners {
+            if cycle >= end {
                 break;
             }
-            while i < ends[0] && first[i].0 == next {
-                level += first[i].1;
-                i += 1;
+            if change == 0 {
+                continue;
             }
-            while j < ends[1] && second[j].0 == next {
-                level += second[j].1;
-                j += 1;
+            if cycle > from {
+                self.levels[count] = (from, level);
+                count += 1;
+                from = cycle;
             }
+            level += change;
         }
+        self.levels[count] = (from, level);
+        count += 1;
         self.level_count = count;
         // The room for each sign of impulse, piece by piece.
         let limit = self.limits.jerk as i64;
@@ -440,10 +456,7 @@ impl Profile {
         // to 1 on cycle `total − 3` (`box(a) ∗ box(b) ∗ box(c)` is symmetric). The first group
         // has a unit (`J − e ≥ 1`), the other's add to it: so from cycle `SLOW − 1` to cycle
         // `total − 2 − SLOW` the velocity is at least `SLOW` if `a·b` is.
-        let full = &groups[0];
-        let shares = groups[1].count == 0
-            || (groups[1].a, groups[1].b, groups[1].c + 1) == (full.a, full.b, full.c);
-        self.fast = if full.count > 0 && shares && full.a + full.b + full.c == total {
+        self.fast = if full.count > 0 && full.a + full.b + full.c == total {
             let slow = SLOW as i32;
             let plateau = i64::try_from(full.a * full.b).unwrap_or(i64::MAX);
             if plateau >= SLOW {
