@@ -40,7 +40,7 @@
 //! over 100,000, 8 moves take more than 20,000 (up to 20,419: seven of them with one raw unit
 //! of jerk, whose first shapes' remainders do not fit); on the x86
 //! development machine a few hundred nanoseconds median, under about 2 µs at worst. Moves where
-//! only a jerk of one or two raw units binds (mostly from fractional positions) are planned by
+//! only a jerk of up to three raw units binds (mostly from fractional positions) are planned by
 //! [`pure_jerk`] first; moves the shapes near the optimum cannot finish are planned by
 //! [`pure_jerk`] where only the jerk binds, else try up to 24 more pairs of ramps around it,
 //! then the same shapes with one unit's area more in the remainder, which costs more (79 of

@@ -22,7 +22,7 @@
 //! limits out of reach); the schedule is built once, for the plan found.
 //!
 //! The search calls it after its shapes, where their plan is more than three cycles over the
-//! optimum or missing ([`improve`]), or before them where the jerk is one or two raw units
+//! optimum or missing ([`improve`]), or before them where the jerk is at most three raw units
 //! ([`first`], the pass with the pairs' impulses on distinct cycles; [`improve`] makes the
 //! other if the search's plan then needs it).
 //!
@@ -62,13 +62,17 @@ const WIDEST: u64 = 3;
 const MAX_CHECKS: u32 = 64;
 
 /// The jerk (raw units) up to which a move of this module's class is planned here before the
-/// search ([`first`]): with one unit of jerk, or two, the search's shapes mostly leave
-/// remainders that its pairs, placed where O(1) inequalities keep the limits, cannot take —
-/// attempt after attempt, each a few thousand Cortex-M4 instructions — where pairs anywhere
-/// the jerk has room can (README, "Planning from fractional positions"). With three or more
-/// units the search's early units take most remainders: planned here first, more moves went
-/// over SPEC §16's budget, not fewer.
-const FIRST_JERK: u64 = 2;
+/// search ([`first`]): with a few units of jerk the search's shapes mostly leave remainders
+/// that its pairs, placed where O(1) inequalities keep the limits, cannot take — attempt after
+/// attempt, each a few thousand Cortex-M4 instructions — where pairs anywhere the jerk has
+/// room can (README, "Planning from fractional positions"). With more units the search's early
+/// units take most remainders. Measured on the Cortex-M4 probe over three samples of moves
+/// from fractional positions (seeds 17, 99 and 5: 3,000, 5,000 and 5,000 moves), moves over
+/// SPEC §16's 20,000: up to 2 units 64, 113, 131; up to 3 57, 109, 120 (worst unchanged);
+/// up to 4 55, 107, 115 but one tiny move, both of whose passes here fail before the search,
+/// 39,523 → 63,508; up to 5 60, 104, 111. (Up to 2 was the choice before [`reach`] and the
+/// corners written in order made a main move here cheaper.)
+const FIRST_JERK: u64 = 3;
 
 /// Plans a move of this module's class with a jerk of at most [`FIRST_JERK`] here, before the
 /// search, with the pairs' impulses on distinct cycles ([`improve`] tries the rest if the

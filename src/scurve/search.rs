@@ -8,7 +8,7 @@
 //! the plan that wins. A last resort (two *fine units*, then ramps of one cycle) covers the few
 //! very short moves with a large jerk that notch pairs have no room in. Where only the jerk binds
 //! and the plan is more than three cycles over the optimum, or missing, [`super::pure_jerk`]
-//! places notch pairs wherever the jerk has room; with a jerk of one or two raw units it plans
+//! places notch pairs wherever the jerk has room; with a jerk of up to three raw units it plans
 //! such moves before the shapes are tried. Before the ramps of one cycle, the ramps around
 //! the optimum ([`around`]), then the same shapes once more with the pairs' widths estimated for
 //! the remainder plus one unit's area ([`Move::with_unit`]), which closes the gaps between what
@@ -281,7 +281,7 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
         limits,
         with_unit: false,
     };
-    // Where only a jerk of a raw unit or two binds, notch pairs anywhere the jerk has room
+    // Where only a jerk of up to three raw units binds, notch pairs anywhere the jerk has room
     // ([`pure_jerk`]) first: the search's shapes mostly leave it remainders it cannot place.
     if pure_jerk::first(distance, direction, limits, out) {
         return true;

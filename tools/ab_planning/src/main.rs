@@ -89,15 +89,29 @@ fn both_plans(p: profilegen::ScurveParameters, start: i64, stepped: u64) -> (Str
     }
 }
 
-/// `--plans`: the moves whose plans differ between the builds, and how many.
+/// The `total` of a plan printed by `both_plans`, if it has one.
+fn total_of(plan: &str) -> Option<i64> {
+    let digits = &plan[plan.find("total: ")? + "total: ".len()..];
+    let end = digits.find(|c: char| !c.is_ascii_digit())?;
+    digits[..end].parse().ok()
+}
+
+/// `--plans`: the moves whose plans differ between the builds, and how many; of those, how many
+/// are shorter and longer in the new build, and by how many cycles in all.
 fn compare_plans(moves: u64, fractional: u64) {
     use profilegen::format::mc1451a::{Jerk, MaxVelocity, ScurveAcceleration};
     let mut differ = 0;
+    let (mut shorter, mut longer, mut change) = (0, 0, 0i64);
     let mut report = |what: String, (a, b): (String, String)| {
         if a != b {
             differ += 1;
             if differ <= 10 {
                 println!("{what}:\n  new {a}\n  old {b}");
+            }
+            if let (Some(new), Some(old)) = (total_of(&a), total_of(&b)) {
+                shorter += u32::from(new < old);
+                longer += u32::from(new > old);
+                change += new - old;
             }
         }
     };
@@ -124,6 +138,9 @@ fn compare_plans(moves: u64, fractional: u64) {
         );
     }
     println!("{moves} random moves, {fractional} from fractional positions: {differ} planned differently");
+    if differ > 0 {
+        println!("  of those, {shorter} shorter and {longer} longer in the new build ({change:+} cycles in all)");
+    }
     if differ > 0 {
         std::process::exit(1);
     }
