@@ -55,11 +55,28 @@ pub(crate) fn rem(n: u64, d: u64) -> u64 {
 fn by_narrow(n: u64, d: u32) -> (u64, u64) {
     let (high, low) = ((n >> 32) as u32, n as u32);
     let (quotient_high, carried) = (high / d, high % d);
-    let (quotient_low, remainder) = narrow_step(carried, low, d);
+    let (quotient_low, remainder) = if d < 1 << 16 {
+        half_steps(carried, low, d)
+    } else {
+        narrow_step(carried, low, d)
+    };
     (
         u64::from(quotient_high) << 32 | u64::from(quotient_low),
         u64::from(remainder),
     )
+}
+
+/// `(high·2^32 + low) / d` and its remainder, for `high < d < 2^16`: two 32-bit divisions, one
+/// for each half of `low`, as each partial dividend (what is carried, then 16 bits) stays below
+/// `d·2^16 ≤ 2^32` — about a fifth of [`narrow_step`]'s cost on a Cortex-M4, for the divisors
+/// the planner mostly has (a ramp's cycles, a jerk, a peak acceleration of a few thousand raw
+/// units) under a large distance.
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+fn half_steps(high: u32, low: u32, d: u32) -> (u32, u32) {
+    let upper = (high << 16) | (low >> 16);
+    let (quotient_upper, carried) = (upper / d, upper % d);
+    let lower = (carried << 16) | (low & 0xFFFF);
+    ((quotient_upper << 16) | (lower / d), lower % d)
 }
 
 /// A 64-bit `n` by a `d ≥ 2^32` (so the quotient fits 32 bits): the quotient of `n/2` by the
