@@ -825,11 +825,8 @@ impl Profile {
                             let (starts, count) = if apart {
                                 // Starts whose impulses fall on distinct cycles: each has the
                                 // room its interval gives it.
-                                let found = (from1..=to1.min(from1 + 3)).find_map(|s1| {
-                                    (from2..=to2.min(from2 + 20))
-                                        .find(|&s2| distinct((s1, w1, k1), (s2, w2, k2)))
-                                        .map(|s2| (s1, s2))
-                                });
+                                let found =
+                                    first_apart((from1, to1), (from2, to2), (w1, k1), (w2, k2));
                                 let Some(found) = found else {
                                     continue;
                                 };
@@ -870,12 +867,45 @@ fn impulses_of((s, w, k): Pair) -> [(i32, i64); 4] {
     [(s, -1), (s + w, 1), (s + k, 1), (s + k + w, -1)]
 }
 
-/// Whether two pairs have their impulses on distinct cycles.
-fn distinct(first: Pair, second: Pair) -> bool {
-    let first = impulses_of(first);
-    impulses_of(second)
-        .iter()
-        .all(|(cycle, _)| first.iter().all(|(other, _)| other != cycle))
+/// The first starts `(s₁, s₂)` — `s₁` from the first four of `from1 ..= to1`, then `s₂` from
+/// the first 21 of `from2 ..= to2` — that put two pairs of widths and spans `(w1, k1)` and
+/// `(w2, k2)` on distinct cycles, each impulse then with the room its interval gives it.
+///
+/// The pairs meet exactly when `s₂ − s₁` is one of the 16 differences between an impulse of the
+/// first and one of the second, the same for every start: those within reach are marked once in
+/// a mask of differences, and each `s₁` reads its first free `s₂` off it. (A walk over the
+/// starts compared the 16 pairs of impulses for each: cheap when the first start is free, but
+/// hundreds of Cortex-M4 instructions where the starts are few and all taken, as in the
+/// shortest moves.)
+fn first_apart(
+    (from1, to1): Interval,
+    (from2, to2): Interval,
+    (w1, k1): (i32, i32),
+    (w2, k2): (i32, i32),
+) -> Option<(i32, i32)> {
+    let (last1, last2) = (to1.min(from1 + 3), to2.min(from2 + 20));
+    if from1 > last1 || from2 > last2 {
+        return None;
+    }
+    // Differences `s₂ − s₁` from `from2 − last1` (bit 0) on: 24 of them cover every pair of
+    // starts looked at.
+    let base = from2 - last1;
+    let mut taken = 0u32;
+    for one in [0, w1, k1, k1 + w1] {
+        for other in [0, w2, k2, k2 + w2] {
+            let bit = one - other - base;
+            if (0..32).contains(&bit) {
+                taken |= 1 << bit;
+            }
+        }
+    }
+    // The starts `from2 ..= last2` (at most 21) as bits from 0.
+    let starts = (1u32 << (last2 - from2 + 1)) - 1;
+    (from1..=last1).find_map(|s1| {
+        // `s₂ = from2 + i` has the difference `from2 + i − s1`: bit `i + (last1 − s1)`.
+        let free = !(taken >> (last1 - s1)) & starts;
+        (free != 0).then(|| (s1, from2 + free.trailing_zeros() as i32))
+    })
 }
 
 /// `⌈n/d⌉` for `d > 0`.
@@ -959,6 +989,37 @@ mod tests {
             }
         }
         moves
+    }
+
+    /// Whether two pairs have their impulses on distinct cycles.
+    fn distinct(first: Pair, second: Pair) -> bool {
+        let first = impulses_of(first);
+        impulses_of(second)
+            .iter()
+            .all(|(cycle, _)| first.iter().all(|(other, _)| other != cycle))
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(20_000))]
+
+        /// [`first_apart`]'s mask of differences finds the starts a walk over them, comparing
+        /// every pair of impulses, finds first (or none, as it does).
+        #[test]
+        fn the_first_starts_apart_are_the_walks(
+            from1 in 0i32..30, len1 in -2i32..8, from2 in 0i32..30, len2 in -2i32..30,
+            w1 in 1i32..=3, k1 in 1i32..20, w2 in 1i32..=3, k2 in 1i32..20,
+        ) {
+            let (to1, to2) = (from1 + len1, from2 + len2);
+            let walked = (from1..=to1.min(from1 + 3)).find_map(|s1| {
+                (from2..=to2.min(from2 + 20))
+                    .find(|&s2| distinct((s1, w1, k1), (s2, w2, k2)))
+                    .map(|s2| (s1, s2))
+            });
+            proptest::prop_assert_eq!(
+                first_apart((from1, to1), (from2, to2), (w1, k1), (w2, k2)),
+                walked
+            );
+        }
     }
 
     /// [`reach`]'s bound, against every pair whose four impulses each have room in the main
