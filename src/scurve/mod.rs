@@ -35,17 +35,17 @@
 //! Planning takes a bounded number of integer operations, the same on every target (no floating
 //! point): at most eight shapes, each solved in closed form, a fixed number of notch-pair
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
-//! checked). Measured (see the README for the commands): 8,853 Cortex-M4 instructions median,
-//! 15,700 at worst over the first 1,000 random moves, 17,400 over 5,000, 17,686 over 20,000;
-//! over 100,000, 8 moves take more than 20,000 (up to 20,419: seven of them with one raw unit
-//! of jerk, whose first shapes' remainders do not fit); on the x86
-//! development machine a few hundred nanoseconds median, under about 2 µs at worst. Moves where
+//! checked). Measured (see the README for the commands): 8,725 Cortex-M4 instructions median,
+//! 15,244 at worst over the first 1,000 random moves, 16,801 over 5,000, 17,110 over 20,000,
+//! 19,960 over 100,000 (a jerk of one raw unit, whose first shapes' remainders do not fit); on
+//! the x86 development machine a few hundred nanoseconds median, under about 2 µs at worst.
+//! Moves where
 //! only a jerk of up to three raw units binds (mostly from fractional positions) are planned by
 //! [`pure_jerk`] first; moves the shapes near the optimum cannot finish are planned by
 //! [`pure_jerk`] where only the jerk binds, else try up to 24 more pairs of ramps around it,
-//! then the same shapes with one unit's area more in the remainder, which costs more (79 of
+//! then the same shapes with one unit's area more in the remainder, which costs more (57 of
 //! 3,000 random moves from fractional positions with a jerk of 1 to 15 raw units take more
-//! than SPEC §16's 20,000, the worst 41,066; other samples reach about 63,000). A step is at
+//! than SPEC §16's 20,000, the worst 39,523; other samples reach about 57,000). A step is at
 //! most 33 Cortex-M4 instructions (36 on the cycles after an abrupt stop), 18 on x86.
 
 mod predict;
