@@ -86,7 +86,7 @@ pub(super) fn first(distance: u64, direction: i64, limits: Limits64, out: &mut S
                 direction,
                 limits,
                 floor.max(3)..=floor + COUNTS - 1,
-                true,
+                &[true],
                 out,
             )
         })
@@ -120,20 +120,22 @@ pub(super) fn improve(
         u64::MAX
     };
     let last = longest.min(floor + COUNTS - 1);
-    // First with the pairs' impulses on distinct cycles (each candidate then mostly fits), then
-    // with them at the ends of their ranges, where they may meet. `out` is written only with a
-    // plan found.
+    // With the pairs' impulses on distinct cycles (each candidate then mostly fits), then with
+    // them at the ends of their ranges, where they may meet (only the latter if `first` tried
+    // the former). `out` is written only with a plan found.
     let passes: &[bool] = if limits.jerk <= FIRST_JERK {
         &[false]
     } else {
         &[true, false]
     };
-    for &apart in passes {
-        if plan(distance, direction, limits, floor.max(3)..=last, apart, out) {
-            return true;
-        }
-    }
-    planned
+    plan(
+        distance,
+        direction,
+        limits,
+        floor.max(3)..=last,
+        passes,
+        out,
+    ) || planned
 }
 
 /// Whether a plan of `total` cycles is within three of the continuous optimum of a move where
@@ -189,17 +191,21 @@ fn optimum_floor(scaled: u64, distance: u64, limits: Limits64) -> Option<u64> {
     (peak_acceleration <= limits.acceleration && peak_velocity <= limits.velocity).then_some(floor)
 }
 
-/// The first plan found, fewest cycles first, with a cycle count in `counts`, into `out`.
+/// The first plan found, fewest cycles first, with a cycle count in `counts`, into `out`: for
+/// each main move, its pairs placed as each of `passes` has them (`true`: on distinct cycles;
+/// `false`: at the ends of their ranges), each pass with its own [`MAX_CHECKS`]. (The passes
+/// once ran one after the other over every main move, so a main move both tried had its room
+/// found twice, and a plan the second found was never shorter than one the first found.)
 fn plan(
     distance: u64,
     direction: i64,
     limits: Limits64,
     counts: core::ops::RangeInclusive<u64>,
-    apart: bool,
+    passes: &[bool],
     out: &mut Schedule,
 ) -> bool {
     let jerk = limits.jerk;
-    let mut checks = 0;
+    let mut checks = [0u32; 2];
     // One profile and one table of fits, rewritten for each main move tried: a few hundred
     // bytes each, which a fresh pair per main move cleared and copied (about an instruction a
     // byte on a Cortex-M4).
@@ -255,7 +261,16 @@ fn plan(
                         },
                     ];
                     profile.set(&groups, total);
-                    if let Some(placement) = profile.take(rest, apart, &mut checks, &mut fits) {
+                    if rest > 0 {
+                        fits.fill(&profile);
+                    }
+                    let placement = passes.iter().find_map(|&apart| {
+                        let checks = &mut checks[usize::from(apart)];
+                        (*checks < MAX_CHECKS)
+                            .then(|| profile.take(rest, apart, checks, &fits))
+                            .flatten()
+                    });
+                    if let Some(placement) = placement {
                         // The main move only for the plan found (most candidates fail): a
                         // [`MainMove`] is a few hundred bytes to clear and fill.
                         let main = MainMove::of_groups(&groups);
@@ -272,7 +287,10 @@ fn plan(
                         );
                         return built;
                     }
-                    if checks >= MAX_CHECKS {
+                    if passes
+                        .iter()
+                        .all(|&apart| checks[usize::from(apart)] >= MAX_CHECKS)
+                    {
                         return false;
                     }
                 }
@@ -748,15 +766,14 @@ fn notch(start: i32, w: i32, k: i32) -> Notch {
 
 impl Profile {
     /// The notch pairs, one or two, that take `rest` off the main move and fit it
-    /// ([`Self::fits`]); counts the candidates checked in `checks`. With `apart`, only pairs
+    /// ([`Self::fits`]), in the room `fits` found for it ([`Fits::fill`]); counts the candidates
+    /// checked in `checks`. With `apart`, only pairs
     /// whose impulses fall on distinct cycles (each then has the room its interval gives it);
     /// else the ends of the start ranges, where impulses may meet in room for both.
-    fn take(&self, rest: u64, apart: bool, checks: &mut u32, fits: &mut Fits) -> Option<Placement> {
+    fn take(&self, rest: u64, apart: bool, checks: &mut u32, fits: &Fits) -> Option<Placement> {
         if rest == 0 {
             return Some(Placement::default());
         }
-        fits.fill(self);
-        let fits = &*fits;
         // Under 6·131 (see `plan`): 32-bit divisions, one instruction each on a Cortex-M4.
         let rest = rest as i32;
         // One pair: w·k = rest.
