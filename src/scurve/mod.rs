@@ -45,7 +45,7 @@
 //! [`pure_jerk`] where only the jerk binds, else try up to 24 more pairs of ramps around it,
 //! then the same shapes with one unit's area more in the remainder, which costs more (57 of
 //! 3,000 random moves from fractional positions with a jerk of 1 to 15 raw units take more
-//! than SPEC §16's 20,000, the worst 39,523; other samples reach about 57,000). A step is at
+//! than SPEC §16's 20,000, the worst 39,523; other samples reach about 48,000). A step is at
 //! most 33 Cortex-M4 instructions (36 on the cycles after an abrupt stop), 18 on x86.
 
 mod predict;
