@@ -43,9 +43,9 @@
 //! only a jerk of up to three raw units binds (mostly from fractional positions) are planned by
 //! [`pure_jerk`] first; moves the shapes near the optimum cannot finish are planned by
 //! [`pure_jerk`] where only the jerk binds, else try up to 24 more pairs of ramps around it,
-//! then the same shapes with one unit's area more in the remainder, which costs more (57 of
+//! then the same shapes with one unit's area more in the remainder, which costs more (53 of
 //! 3,000 random moves from fractional positions with a jerk of 1 to 15 raw units take more
-//! than SPEC §16's 20,000, the worst 39,523; other samples reach about 48,000). A step is at
+//! than SPEC §16's 20,000, the worst 39,517; other samples reach about 42,500). A step is at
 //! most 33 Cortex-M4 instructions (36 on the cycles after an abrupt stop), 18 on x86.
 
 mod predict;
