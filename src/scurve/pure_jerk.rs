@@ -23,8 +23,9 @@
 //!
 //! The search calls it after its shapes, where their plan is more than three cycles over the
 //! optimum or missing ([`improve`]), or before them where the jerk is at most three raw units
-//! ([`first`], the pass with the pairs' impulses on distinct cycles; [`improve`] makes the
-//! other if the search's plan then needs it).
+//! ([`first`], the pass with the pairs' impulses on distinct cycles, and for the shortest
+//! moves the other as well; [`improve`] makes the other if the search's plan then needs it).
+//! Where both passes run, each main move is tried with both, its room found once.
 //!
 //! Its cost is bounded: at most [`COUNTS`] cycle counts, for each a few main moves per first ramp
 //! (the second ramps whose distance is just above the move's), at most [`MAX_CHECKS`] candidates
@@ -137,8 +138,8 @@ pub(super) fn improve(
     };
     let last = longest.min(floor + COUNTS - 1);
     // With the pairs' impulses on distinct cycles (each candidate then mostly fits), then with
-    // them at the ends of their ranges, where they may meet (only the latter if `first` tried
-    // the former). `out` is written only with a plan found.
+    // them at the ends of their ranges, where they may meet: only the latter if `first` tried
+    // the former, neither if it tried both. `out` is written only with a plan found.
     let passes: &[bool] = if limits.jerk <= FIRST_JERK {
         if floor < SHORTEST {
             return planned; // `first` made both passes
@@ -213,8 +214,9 @@ fn optimum_floor(scaled: u64, distance: u64, limits: Limits64) -> Option<u64> {
 /// The first plan found, fewest cycles first, with a cycle count in `counts`, into `out`: for
 /// each main move, its pairs placed as each of `passes` has them (`true`: on distinct cycles;
 /// `false`: at the ends of their ranges), each pass with its own [`MAX_CHECKS`]. (The passes
-/// once ran one after the other over every main move, so a main move both tried had its room
-/// found twice, and a plan the second found was never shorter than one the first found.)
+/// once ran one after the other over every main move: a main move both tried had its room
+/// found twice, and a plan the first pass found on a later cycle count was kept over one the
+/// second would have found on an earlier one.)
 fn plan(
     distance: u64,
     direction: i64,
@@ -786,9 +788,9 @@ fn notch(start: i32, w: i32, k: i32) -> Notch {
 impl Profile {
     /// The notch pairs, one or two, that take `rest` off the main move and fit it
     /// ([`Self::fits`]), in the room `fits` found for it ([`Fits::fill`]); counts the candidates
-    /// checked in `checks`. With `apart`, only pairs
-    /// whose impulses fall on distinct cycles (each then has the room its interval gives it);
-    /// else the ends of the start ranges, where impulses may meet in room for both.
+    /// checked in `checks`. With `apart`, only pairs whose impulses fall on distinct cycles
+    /// (each then has the room its interval gives it); else the ends of the start ranges, where
+    /// impulses may meet in room for both.
     fn take(&self, rest: u64, apart: bool, checks: &mut u32, fits: &Fits) -> Option<Placement> {
         if rest == 0 {
             return Some(Placement::default());
