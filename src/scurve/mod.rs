@@ -35,17 +35,17 @@
 //! Planning takes a bounded number of integer operations, the same on every target (no floating
 //! point): at most eight shapes, each solved in closed form, a fixed number of notch-pair
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
-//! checked). Measured (see the README for the commands): 8,675 Cortex-M4 instructions median,
-//! 14,894 at worst over the first 1,000 random moves, 16,097 over 5,000, 16,665 over 20,000,
-//! 19,461 over 100,000 (a jerk of one raw unit, whose first shapes' remainders do not fit); on
+//! checked). Measured (see the README for the commands): 8,720 Cortex-M4 instructions median,
+//! 15,238 at worst over the first 1,000 random moves, 16,796 over 5,000, 17,103 over 20,000,
+//! 19,953 over 100,000 (a jerk of one raw unit, whose first shapes' remainders do not fit); on
 //! the x86 development machine a few hundred nanoseconds median, under about 2 µs at worst.
 //! Moves where
 //! only a jerk of up to three raw units binds (mostly from fractional positions) are planned by
 //! [`pure_jerk`] first; moves the shapes near the optimum cannot finish are planned by
 //! [`pure_jerk`] where only the jerk binds, else try up to 24 more pairs of ramps around it,
-//! then the same shapes with one unit's area more in the remainder, which costs more (44 of
+//! then the same shapes with one unit's area more in the remainder, which costs more (53 of
 //! 3,000 random moves from fractional positions with a jerk of 1 to 15 raw units take more
-//! than SPEC §16's 20,000, the worst 37,742; other samples reach about 41,400). A step is at
+//! than SPEC §16's 20,000, the worst 39,517; other samples reach about 42,500). A step is at
 //! most 33 Cortex-M4 instructions (36 on the cycles after an abrupt stop), 18 on x86.
 
 mod predict;

@@ -286,16 +286,25 @@ struct Room<C> {
 
 impl<C: Cycle> Room<C> {
     /// The first notch (−1 where the jerk is ≥ 0, +1 `w` later where it is ≤ 0, the window
-    /// before phase V) in phases I–II; the second (+1 where the jerk is ≤ 0, from the end of
-    /// phase III on; −1 `w` later where the jerk is ≥ 0, before the last cycle) ending in the
-    /// cruise (`second_in_cruise`), or after phase V.
-    fn new(bounds: &Bounds, second_in_cruise: bool) -> Self {
+    /// before phase V) in phases I–II, or in the cruise (`first_in_cruise`); the second (+1
+    /// where the jerk is ≤ 0, from the end of phase III on; −1 `w` later where the jerk is ≥ 0,
+    /// before the last cycle) ending in the cruise (`second_in_cruise`), or after phase V.
+    fn new(bounds: &Bounds, (first_in_cruise, second_in_cruise): (bool, bool)) -> Self {
         let deceleration = bounds.first_deceleration;
-        let first = Edges {
-            low_floor: 0,
-            low_base: bounds.last_rise_start,
-            high_cap: bounds.first_fall_end.saturating_sub(1),
-            high_base: deceleration,
+        let first = if first_in_cruise {
+            Edges {
+                low_floor: bounds.rise_end,
+                low_base: 0,
+                high_cap: u64::MAX,
+                high_base: deceleration,
+            }
+        } else {
+            Edges {
+                low_floor: 0,
+                low_base: bounds.last_rise_start,
+                high_cap: bounds.first_fall_end.saturating_sub(1),
+                high_base: deceleration,
+            }
         };
         let from = bounds.rise_end.saturating_sub(1);
         let second = if second_in_cruise {
@@ -474,9 +483,9 @@ const WIDTH_TRIES: u64 = 1;
 /// `placed` (added to it), for the least `q ≤ available` that makes the remainder fit
 /// ([`Placement::fits`]): `Some(q)`, and `q` units of that area then keep their whole cruise;
 /// `None` (and `placed` as it was) if no candidate fits. A fixed, small number of candidates:
-/// for each of two ways to place a pair (first notch in phases I–II, second in the cruise or
-/// after phase V), one pair of width 1 or 2 for a small remainder, else two pairs of widths `w`
-/// and `w + 1` for a few `w`: the estimate
+/// for each of three ways to place a pair (first notch in phases I–II, second in the cruise or
+/// after phase V; both in the cruise), one pair of width 1 or 2 for a small remainder, else (not
+/// in the cruise alone) two pairs of widths `w` and `w + 1` for a few `w`: the estimate
 /// `left / (2·span + 1)` and one below it, and half and all of the first ramp (where short moves
 /// have room). With `with_unit`, the widths are estimated for `left + area` instead (a second
 /// search's, after the first found nothing).
@@ -554,17 +563,14 @@ impl Remainder<'_> {
         let estimated = self.estimated;
         let (main, jerk_limit) = (self.main, self.jerk_limit);
         let mut try_fit = |pairs: &[Notch]| placed.try_add(pairs, main, bounds, jerk_limit);
-        // The placements that take remainders: the first notch in phases I–II, the second in
-        // the cruise, then after phase V. (Both in the cruise took single pairs in about 1 % of
-        // random moves, but every one of them was planned as fast without it — of 200,000 moves
-        // none shorter or longer, 877 with their pairs elsewhere — and its look cost every
-        // remainder: Cortex-M4 from fractional positions 53 → 50 of CI's 3,000 over SPEC §16's
-        // 20,000. First in the cruise, second after phase V, never took one.)
-        const SECOND_IN_CRUISE: [bool; 2] = [true, false];
+        // The three placements that take remainders (measured over 100,000 random moves: first
+        // notch in phases I–II with the second in the cruise or after phase V, and both in the
+        // cruise for single pairs; first in the cruise, second after phase V, never did).
+        const PLACEMENTS: [(bool, bool); 3] = [(false, true), (false, false), (true, true)];
         // The most any q ≤ available can make of the remainder.
         let reach = saturating_product(area, available).saturating_add(left);
-        for second_in_cruise in SECOND_IN_CRUISE {
-            let room = Room::<C>::new(bounds, second_in_cruise);
+        for &placement in &PLACEMENTS {
+            let room = Room::<C>::new(bounds, placement);
             // A single pair takes w·span ≤ 2·total, and q units only add to the remainder: a
             // larger one needs two pairs.
             let widest = if left <= bounds.total.saturating_mul(2) {
@@ -588,12 +594,16 @@ impl Remainder<'_> {
                     return Some(q);
                 }
             }
+            // Two pairs only with the first notch in phases I–II (see above).
+            if placement.0 {
+                continue;
+            }
             // The second notch in the cruise: its cycles start at `rise_end − 1` whatever the
             // width, and end `w` before phase V, so a cruise with no room for a notch of width
             // 2 has none for any wider, and two pairs (widths `w` and `w + 1 ≥ 2`) never fit.
             // The moves with a single unit and no cruise (a jerk of one raw unit, most often)
             // leave here, before the widths' estimates and rooms.
-            if second_in_cruise {
+            if placement.1 {
                 let (first, last) = room.second.at(C::narrow(2));
                 if first > last {
                     continue;
@@ -616,24 +626,14 @@ impl Remainder<'_> {
                 div(estimated, middle.saturating_mul(2).saturating_add(1)).max(1)
             };
             let guess = refine(refine(div(estimated, bounds.total.max(1)).max(1)));
-            // And half and all of the first ramp, where short moves have room — with the second
-            // notch after phase V: with it in the cruise they took 3 of 20,000 random moves'
-            // remainders and none of 3,000 from fractional positions, and leaving them out
-            // changed 37 of `ab_plans`' 200,000 plans (1 shorter, 3 longer, +2 cycles in all,
-            // all within the bound) for 44 instead of 47 of CI's fractional moves over SPEC
-            // §16's 20,000 on a Cortex-M4.
+            // And half and all of the first ramp, where short moves have room.
             let ramp = bounds.last_rise_start;
             // (Every width around the guess is at least 1; the ramp's, read from a slice, not
             // moved out of an array: fewer instructions a width on a Cortex-M4.)
             let around = guess.saturating_sub(1).max(1)..guess + WIDTH_TRIES;
             let ramp_widths = [ramp / 2, ramp];
-            let ramps = if second_in_cruise {
-                0
-            } else {
-                ramp_widths.len()
-            };
             let widths = around.clone().chain(
-                ramp_widths[..ramps]
+                ramp_widths
                     .iter()
                     .copied()
                     .filter(move |&w| w > 0 && !around.contains(&w)),
