@@ -92,27 +92,38 @@ const SHORTEST: u64 = 12;
 /// search's plan is then too long): `false`, and `out` unusable, if no plan was found or the
 /// move is not one of them.
 pub(super) fn first(distance: u64, direction: i64, limits: Limits64, out: &mut Schedule) -> bool {
+    // The jerk first: most moves leave here, before the class test's cube root.
     limits.jerk <= FIRST_JERK
         && floor_if_planned_here(distance, limits).is_some_and(|floor| {
+            let passes = first_passes(limits.jerk, floor);
             plan(
                 distance,
                 direction,
                 limits,
                 floor.max(3)..=floor + COUNTS - 1,
-                if floor < SHORTEST {
-                    &[true, false]
-                } else {
-                    &[true]
-                },
+                passes,
                 out,
             )
         })
 }
 
+/// The passes [`first`] makes for a move of this module's class with `jerk` and the optimum's
+/// floor `floor` (`true`: the pairs' impulses on distinct cycles; `false`: at the ends of their
+/// ranges), none above [`FIRST_JERK`]: [`improve`] makes the others.
+fn first_passes(jerk: u64, floor: u64) -> &'static [bool] {
+    if jerk > FIRST_JERK {
+        &[]
+    } else if floor < SHORTEST {
+        &[true, false]
+    } else {
+        &[true]
+    }
+}
+
 /// Replaces `out` (the search's plan, if `planned`) with a faster plan if the move is one where
 /// only the jerk binds and the search's plan is more than three cycles over the continuous
-/// optimum, or missing, and a faster one is found (with the pairs at the ends of their ranges
-/// only, if [`first`] tried them on distinct cycles already). Returns whether `out` holds a plan.
+/// optimum, or missing, and a faster one is found (with the passes [`first`] did not make,
+/// [`first_passes`]). Returns whether `out` holds a plan.
 pub(super) fn improve(
     distance: u64,
     direction: i64,
@@ -138,15 +149,12 @@ pub(super) fn improve(
     };
     let last = longest.min(floor + COUNTS - 1);
     // With the pairs' impulses on distinct cycles (each candidate then mostly fits), then with
-    // them at the ends of their ranges, where they may meet: only the latter if `first` tried
-    // the former, neither if it tried both. `out` is written only with a plan found.
-    let passes: &[bool] = if limits.jerk <= FIRST_JERK {
-        if floor < SHORTEST {
-            return planned; // `first` made both passes
-        }
-        &[false]
-    } else {
-        &[true, false]
+    // them at the ends of their ranges, where they may meet: those `first` did not try. `out`
+    // is written only with a plan found.
+    let passes: &[bool] = match first_passes(limits.jerk, floor) {
+        [] => &[true, false],
+        [true] => &[false],
+        _ => return planned,
     };
     plan(
         distance,
