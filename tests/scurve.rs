@@ -714,6 +714,27 @@ fn the_maximum_velocity_is_met_exactly_when_the_acceleration_limit_is_reached() 
     assert_eq!(plan.peak_velocity.to_bits(), 16 << 16);
 }
 
+/// Found by the fuzzer: 2 counts less one raw unit to go with a jerk of 2 raw units and V = 4
+/// raw (2^18 in 2^-32 counts/cycle). Two units meet V only from above, with ramps (362, 363)
+/// and (362, 362): 262,450 raw, brought down 306 by a velocity notch. Placed up to phase III's
+/// earliest start, the notch's raise ended inside phase V (where the jerk is −2 already) and
+/// did not fit, so the plan cruised 56 raw units under V with ramps (362, 362) ×2: 8 cycles
+/// over the continuous optimum of 33,492.08 (the cruise alone 2^33/(2^18 − 56) − 2^15 ≈ 7
+/// cycles longer). Now the cruise is V itself, within the bound, and the move steps to its end.
+#[test]
+fn a_velocity_notch_whose_raise_falls_in_phase_five_is_placed_later() {
+    let p = ScurveParameters {
+        destination: -606_348_290,
+        max_velocity: MaxVelocity::from_bits(4).unwrap(),
+        max_acceleration: ScurveAcceleration::from_bits(23_515).unwrap(),
+        jerk: Jerk::from_bits(2).unwrap(),
+    };
+    let start = I32F32::from_bits((-606_348_288_i64 << 32) - 1);
+    moves_within_the_bound(p, start).unwrap();
+    let plan = SCurve::with_position(p, start).unwrap().plan();
+    assert_eq!(plan.peak_velocity.to_bits(), 4 << 16);
+}
+
 /// Where one cycle of jerk and of acceleration reaches the maximum velocity (V ≤ min(J, A)), no
 /// move is shorter than ⌈D/V⌉ + 2 cycles (by hand: each moving cycle covers at most V, and after
 /// the last one the velocity and then the acceleration must come back to zero, a cycle each), and

@@ -199,16 +199,34 @@ impl Placement {
     }
 }
 
-/// The velocity notch of width `width`: lowered from the end of phase II on, raised to the start
-/// of phase VII, so the whole cruise is `width` lower; it takes `width · (c − 1)` off, where the
-/// earliest start of phase V is `c − 1` or `c`.
-pub(super) fn velocity_notch(width: u64, bounds: &Bounds, c: u64) -> Option<Notch> {
-    let start = bounds.first_fall_end.checked_sub(width)?;
-    Some(Notch {
-        start,
-        width,
-        span: c.checked_sub(1)?,
-    })
+/// The velocity notches of width `width` to try, in order: each lowers the acceleration for
+/// `width` cycles ending in phase III and raises it `c − 1` cycles later, so the whole cruise
+/// is `width` lower; each takes `width · (c − 1)` off (the earliest start of phase V is `c − 1`
+/// or `c`).
+///
+/// The first ends where phase III starts earliest. Its raise then ends `c − 1` cycles later:
+/// inside phase V when every unit starts phase V on cycle `c` and some unit's first ramp is as
+/// long as the shortest second ramp — there the jerk is −J already, and the raise's −1 has no
+/// room. The second (only where it differs) ends as early as lets its raise end after every
+/// unit's phase V; its own last lowered cycle then falls in phase III, whose jerk ≤ 0 has room
+/// for the +1. Without it, a move of 2 counts with a jerk of 2 raw units, whose two units meet
+/// the maximum velocity only from above, cruised 56 raw units under it instead: 8 cycles over
+/// the optimum.
+pub(super) fn velocity_notches(width: u64, bounds: &Bounds, c: u64) -> [Option<Notch>; 2] {
+    let Some(span) = c.checked_sub(1) else {
+        return [None, None];
+    };
+    let notch = |end: u64| {
+        Some(Notch {
+            start: end.checked_sub(width)?,
+            width,
+            span,
+        })
+    };
+    let end = bounds.first_fall_end;
+    // The raise's last jerk change, on `end + span`, at or after the latest end of phase V.
+    let later = bounds.deceleration_jerked.saturating_sub(span);
+    [notch(end), if later > end { notch(later) } else { None }]
 }
 
 /// A cycle number in the width the search for a placement works in: 32 bits for a move shorter

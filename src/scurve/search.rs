@@ -15,7 +15,7 @@
 //! two pairs take when the jerk leaves a single unit.
 
 use super::pure_jerk;
-use super::remainder::{self, velocity_notch, Placement};
+use super::remainder::{self, velocity_notches, Notch, Placement};
 use super::roots::{cube_root, square_root};
 use super::schedule::{Limits64, Schedule, LONGEST_RUN};
 use super::shape::{MainMove, Mix};
@@ -568,11 +568,16 @@ fn complete(
     let bounds = main.bounds();
     let mut placement = Placement::default();
     if notch > 0 {
-        let Some(velocity_notch) = velocity_notch(notch, &bounds, c) else {
-            return false;
+        let fits = |velocity_notch: &Notch| {
+            placement = Placement::default();
+            placement.push(*velocity_notch);
+            placement.fits(0, &main, &bounds, jerk)
         };
-        placement.push(velocity_notch);
-        if !placement.fits(0, &main, &bounds, jerk) {
+        if !velocity_notches(notch, &bounds, c)
+            .iter()
+            .flatten()
+            .any(fits)
+        {
             return false;
         }
     }
