@@ -199,34 +199,40 @@ impl Placement {
     }
 }
 
-/// The velocity notches of width `width` to try, in order: each lowers the acceleration for
-/// `width` cycles ending in phase III and raises it `c − 1` cycles later, so the whole cruise
-/// is `width` lower; each takes `width · (c − 1)` off (the earliest start of phase V is `c − 1`
-/// or `c`).
+/// Places the velocity notch of width `width` as the placement's first pair (`placement` is
+/// empty), if one fits: it lowers the acceleration for `width` cycles ending in phase III and
+/// raises it `c − 1` cycles later, so the whole cruise is `width` lower, and takes
+/// `width · (c − 1)` off (the earliest start of phase V is `c − 1` or `c`). `false` (and the
+/// placement empty) if neither of two ends fits.
 ///
-/// The first ends where phase III starts earliest. Its raise then ends `c − 1` cycles later:
+/// The first end is where phase III starts earliest. The raise then ends `c − 1` cycles later:
 /// inside phase V when every unit starts phase V on cycle `c` and some unit's first ramp is as
 /// long as the shortest second ramp — there the jerk is −J already, and the raise's −1 has no
-/// room. The second (only where it differs) ends as early as lets its raise end after every
-/// unit's phase V; its own last lowered cycle then falls in phase III, whose jerk ≤ 0 has room
-/// for the +1. Without it, a move of 2 counts with a jerk of 2 raw units, whose two units meet
-/// the maximum velocity only from above, cruised 56 raw units under it instead: 8 cycles over
-/// the optimum.
-pub(super) fn velocity_notches(width: u64, bounds: &Bounds, c: u64) -> [Option<Notch>; 2] {
+/// room. The second (tried only if it differs) is the earliest that ends the raise after every
+/// unit's phase V; its lowered window's last jerk change then falls in phase III, whose jerk ≤ 0
+/// has room for the +1. Without it, a move of 2 counts with a jerk of 2 raw units, whose two
+/// units meet the maximum velocity only from above, cruised 56 raw units under it instead: 8
+/// cycles over the optimum.
+pub(super) fn place_velocity_notch(
+    placement: &mut Placement,
+    width: u64,
+    c: u64,
+    main: &MainMove,
+    bounds: &Bounds,
+    jerk_limit: u64,
+) -> bool {
     let Some(span) = c.checked_sub(1) else {
-        return [None, None];
+        return false;
     };
-    let notch = |end: u64| {
-        Some(Notch {
-            start: end.checked_sub(width)?,
-            width,
-            span,
+    let mut ending_on = |end: u64| {
+        end.checked_sub(width).is_some_and(|start| {
+            placement.try_add(&[Notch { start, width, span }], main, bounds, jerk_limit)
         })
     };
-    let end = bounds.first_fall_end;
+    let first_end = bounds.first_fall_end;
     // The raise's last jerk change, on `end + span`, at or after the latest end of phase V.
-    let later = bounds.deceleration_jerked.saturating_sub(span);
-    [notch(end), if later > end { notch(later) } else { None }]
+    let later_end = bounds.deceleration_jerked.saturating_sub(span);
+    ending_on(first_end) || (later_end > first_end && ending_on(later_end))
 }
 
 /// A cycle number in the width the search for a placement works in: 32 bits for a move shorter

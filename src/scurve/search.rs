@@ -15,7 +15,7 @@
 //! two pairs take when the jerk leaves a single unit.
 
 use super::pure_jerk;
-use super::remainder::{self, velocity_notches, Notch, Placement};
+use super::remainder::{self, place_velocity_notch, Placement};
 use super::roots::{cube_root, square_root};
 use super::schedule::{Limits64, Schedule, LONGEST_RUN};
 use super::shape::{MainMove, Mix};
@@ -567,19 +567,8 @@ fn complete(
     let main = mix.main_move(c, early);
     let bounds = main.bounds();
     let mut placement = Placement::default();
-    if notch > 0 {
-        let fits = |velocity_notch: &Notch| {
-            placement = Placement::default();
-            placement.push(*velocity_notch);
-            placement.fits(0, &main, &bounds, jerk)
-        };
-        if !velocity_notches(notch, &bounds, c)
-            .iter()
-            .flatten()
-            .any(fits)
-        {
-            return false;
-        }
+    if notch > 0 && !place_velocity_notch(&mut placement, notch, c, &main, &bounds, jerk) {
+        return false;
     }
     let Some(given) = remainder::take(
         over,
