@@ -11,6 +11,9 @@
 //!   that meets the maximum acceleration and velocity to the raw unit;
 //! - [`remainder`]: the notch pairs that take the last of the distance, and the Diophantine
 //!   solver that sizes them;
+//! - [`volumes`]: short moves where only the jerk binds (under about 35 cycles, mostly what a
+//!   stop leaves), planned first as a sum of at most `J` unit volumes `a·b·c` read off a table
+//!   built at compile time — no notch pairs, no shapes;
 //! - [`pure_jerk`]: moves where only the jerk binds (a few dozen cycles with a jerk of a few raw
 //!   units, mostly what a stop leaves), whose notch pairs go wherever the jerk has room;
 //! - [`roots`]: the integer square and cube roots the search starts from;
@@ -28,24 +31,26 @@
 //! ([`crate::reference::scurve_duration`]): over 40,000,000 random moves across the register
 //! ranges the worst was +2.91 cycles and the mean +0.93; over 3,000,000 moves of under 2^17 raw
 //! units with a jerk of 1 to 15 raw units from fractional positions (where stops leave an axis)
-//! the worst was +2.9993. The integer plan may keep a cycle or two
+//! the worst was +2.9993 (both surveys before [`volumes`], whose plans are within three cycles
+//! of the optimum's floor by construction). The integer plan may keep a cycle or two
 //! of constant acceleration below the maximum (phases II/VI) where the continuous optimum has
 //! none; [`ScurvePlan::phases`] reports the phases of the move's main units as they are.
 //!
 //! Planning takes a bounded number of integer operations, the same on every target (no floating
 //! point): at most eight shapes, each solved in closed form, a fixed number of notch-pair
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
-//! checked). Measured (see the README for the commands): 8,720 Cortex-M4 instructions median,
-//! 15,238 at worst over the first 1,000 random moves, 16,796 over 5,000, 17,103 over 20,000,
-//! 19,953 over 100,000 (a jerk of one raw unit, whose first shapes' remainders do not fit); on
+//! checked). Measured (see the README for the commands): 8,703 Cortex-M4 instructions median,
+//! 15,275 at worst over the first 1,000 random moves, 16,871 over 5,000, 17,148 over 20,000,
+//! 19,993 over 100,000 (a jerk of one raw unit, whose first shapes' remainders do not fit); on
 //! the x86 development machine a few hundred nanoseconds median, under about 2 µs at worst.
-//! Moves where
-//! only a jerk of up to three raw units binds (mostly from fractional positions) are planned by
-//! [`pure_jerk`] first; moves the shapes near the optimum cannot finish are planned by
-//! [`pure_jerk`] where only the jerk binds, else try up to 24 more pairs of ramps around it,
-//! then the same shapes with one unit's area more in the remainder, which costs more (53 of
-//! 3,000 random moves from fractional positions with a jerk of 1 to 15 raw units take more
-//! than SPEC §16's 20,000, the worst 39,517; other samples reach about 42,500). A step is at
+//! Short moves where only a jerk of three raw units or more binds (mostly from fractional
+//! positions) are sums of unit volumes ([`volumes`]) first, and those with a jerk of up to three
+//! are planned by [`pure_jerk`] next; moves the shapes near the optimum cannot finish are
+//! planned by [`pure_jerk`] where only the jerk binds, else try up to 24 more pairs of ramps
+//! around it, then the same shapes with one unit's area more in the remainder, which costs more
+//! (9 of 3,000 random moves from fractional positions with a jerk of 1 to 15 raw units take more
+//! than SPEC §16's 20,000, all long moves with a jerk of 1 to 3 raw units, the worst 30,327;
+//! other samples reach about 30,500). A step is at
 //! most 33 Cortex-M4 instructions (36 on the cycles after an abrupt stop), 18 on x86.
 
 mod predict;
@@ -56,6 +61,7 @@ mod schedule;
 mod search;
 mod shape;
 mod stop;
+mod volumes;
 
 use fixed::types::I32F32;
 

@@ -558,6 +558,56 @@ impl Schedule {
         true
     }
 
+    /// Makes this the schedule of the units of `groups` alone (no notch pairs), all starting on
+    /// cycle 0, in the direction `direction` (±1), its phases those of the first group's ramps,
+    /// sealed; `false` (and nothing built) if the move is longer than [`MAX_CHANGES`] − 1
+    /// cycles or `groups` is empty. For the short moves of [`super::volumes`]: their changes,
+    /// a few groups' corners on at most that many cycles, are added up per cycle in a table
+    /// and read off in one pass (no sorted lists to merge).
+    pub fn build_short(&mut self, groups: &[Group], direction: i64) -> bool {
+        let total = groups.iter().map(|g| g.a + g.b + g.c).max().unwrap_or(0);
+        let Some(first) = groups.first() else {
+            return false;
+        };
+        if total >= MAX_CHANGES as u64 || first.b < first.a || total < 2 * (first.a + first.b) {
+            return false;
+        }
+        // The jerk's change on each cycle; a unit's last corner, on the move's last cycle or
+        // before, is not a change within it (the end marker zeroes the jerk there).
+        let mut changes = [0i64; MAX_CHANGES];
+        for group in groups {
+            // count ≤ J < 2^31: every sum here stays within ±2^33.
+            let count = group.count as i64 * direction;
+            for (cycle, corner) in corners(group.a, group.b, group.c) {
+                if let Some(change) = changes.get_mut(cycle as usize).filter(|_| cycle < total) {
+                    *change += corner * count;
+                }
+            }
+        }
+        let total = total as usize;
+        let (mut start, mut run_jerk, mut written) = (0, changes[0], 0);
+        let mut jerk = run_jerk;
+        for (cycle, &change) in changes.iter().enumerate().take(total).skip(1) {
+            jerk += change;
+            if jerk != run_jerk {
+                self.runs[written] = (cycle as u32 - start).run(run_jerk, written as u16 + 1);
+                written += 1;
+                (start, run_jerk) = (cycle as u32, jerk);
+            }
+        }
+        self.runs[written] = (total as u32 - start).run(run_jerk, written as u16 + 1);
+        self.runs[written + 1] = Run::END;
+        self.len = written + 2;
+        let (a, b) = (first.a, first.b);
+        self.plan = ScurvePlan {
+            phases: [a, b - a, a, total as u64 - 2 * (a + b), a, b - a, a],
+            total: total as u64,
+            peak_acceleration: I32F32::ZERO,
+            peak_velocity: I32F32::ZERO,
+        };
+        true
+    }
+
     /// [`Self::seal`]s the changes of `main` and `placement` in the direction `sign`, its cycles
     /// of type `C`.
     fn seal_from<C: Cycle>(&mut self, main: &MainMove, placement: &Placement, sign: i32, total: C) {
@@ -676,9 +726,18 @@ impl Schedule {
             let (first, last) = (acceleration + jerk, acceleration + jerk * m);
             peak_acceleration = peak_acceleration.max(first.abs()).max(last.abs());
             // The velocity turns inside the run only where the acceleration changes sign: at
-            // n* = ⌊−a/j − ½⌋ or the cycle after, where it is v + a·n + j·n(n+1)/2.
+            // n* = ⌊−a/j − ½⌋ or the cycle after, where it is v + a·n + j·n(n+1)/2. The floor
+            // is taken with a positive divisor: `div_euclid` by a negative one rounds up (it
+            // keeps the remainder ≥ 0), and with j < 0 (a peak, not a dip) the replay then
+            // looked at the two cycles after the peak and reported a peak velocity two raw
+            // units low (a plan of four kinds of unit, found by `random_moves`).
             if first.signum() * last.signum() < 0 {
-                let turn = (-2 * acceleration - jerk).div_euclid(2 * jerk);
+                let (numerator, divisor) = if jerk < 0 {
+                    (2 * acceleration + jerk, -2 * jerk)
+                } else {
+                    (-2 * acceleration - jerk, 2 * jerk)
+                };
+                let turn = numerator.div_euclid(divisor);
                 for n in [turn, turn + 1] {
                     if (1..=m).contains(&n) {
                         let v = velocity + acceleration * n + jerk * (n * (n + 1) / 2);
@@ -858,6 +917,72 @@ mod tests {
                 placement = placement.with(Notch { start: start % starts.max(1), width, span });
             }
             assert_runs_are_the_jerk(&MainMove::of_groups(&groups), &placement, (1, 1));
+        }
+
+        /// Any few groups of units of at most 35 cycles, each its own triple box: the short
+        /// build is their jerk cycle by cycle, in both directions, and the replay's peaks,
+        /// distance and limits check are those of stepping it cycle by cycle (acceleration,
+        /// then velocity, then position, as the generator steps).
+        #[test]
+        fn short_builds_are_the_units_and_replay_as_stepped(
+            units in proptest::collection::vec((1u64..9, 0u64..9, 0u64..18, 1u64..1_000), 1..6),
+        ) {
+            let groups: Vec<Group> = units
+                .iter()
+                .map(|&(a, more, cruise, count)| {
+                    let b = a + more;
+                    Group { count, a, b, c: a + b + cruise }
+                })
+                .filter(|g| g.a + g.b + g.c <= 35)
+                .collect();
+            proptest::prop_assume!(!groups.is_empty());
+            let total = groups.iter().map(|g| g.a + g.b + g.c).max().unwrap();
+            let main = MainMove::of_groups(&groups);
+            for direction in [1, -1] {
+                let mut schedule = Schedule::EMPTY;
+                // The first group's ramps name the phases: only a longer move is refused.
+                let first = groups[0];
+                let fits = total >= 2 * (first.a + first.b);
+                proptest::prop_assert_eq!(schedule.build_short(&groups, direction), fits);
+                if !fits {
+                    continue;
+                }
+                proptest::prop_assert_eq!(schedule.plan.total, total);
+                let (mut cycle, mut last_jerk) = (0u64, None);
+                let (mut acceleration, mut velocity, mut distance) = (0i128, 0i128, 0i128);
+                let (mut peak_acceleration, mut peak_velocity) = (0i128, 0i128);
+                for (hold, jerk) in schedule.runs() {
+                    proptest::prop_assert!(hold >= 1);
+                    proptest::prop_assert_ne!(Some(jerk), last_jerk);
+                    for n in cycle..cycle + hold {
+                        proptest::prop_assert_eq!(jerk, direction * main.jerk_at(n));
+                        acceleration += i128::from(jerk * direction);
+                        velocity += acceleration;
+                        distance += velocity;
+                        peak_acceleration = peak_acceleration.max(acceleration.abs());
+                        peak_velocity = peak_velocity.max(velocity);
+                    }
+                    (cycle, last_jerk) = (cycle + hold, Some(jerk));
+                }
+                proptest::prop_assert_eq!(cycle, total);
+                proptest::prop_assert_eq!((acceleration, velocity), (0, 0));
+                let covered: u64 = groups.iter().map(|g| g.count * g.a * g.b * g.c).sum();
+                proptest::prop_assert_eq!(distance, i128::from(covered));
+                let units: u64 = groups.iter().map(|g| g.count).sum();
+                let limits = Limits64 {
+                    jerk: units,
+                    acceleration: u64::MAX >> 2,
+                    velocity: u64::MAX >> 2,
+                };
+                let replay = schedule.replay(direction, limits);
+                proptest::prop_assert!(replay.within_limits);
+                proptest::prop_assert_eq!(replay.distance, distance);
+                proptest::prop_assert_eq!(i128::from(replay.peak_velocity), peak_velocity);
+                proptest::prop_assert_eq!(i128::from(replay.peak_acceleration), peak_acceleration);
+                // One raw unit under the peak velocity is a limit broken on the cycle of it.
+                let under = Limits64 { velocity: peak_velocity as u64 - 1, ..limits };
+                proptest::prop_assert!(!schedule.replay(direction, under).within_limits);
+            }
         }
     }
 }

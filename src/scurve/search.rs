@@ -1,6 +1,9 @@
 //! The search for a plan: the continuous-time optimum in integers, a small fixed set of integer
 //! shapes around it, and the first of them, fastest first, whose remainder fits.
 //!
+//! Short moves where only the jerk binds are planned before any of this, as sums of unit volumes
+//! ([`super::volumes`]).
+//!
 //! Its cost is bounded whatever the move: integer square and cube roots (a fixed number of
 //! steps), at most [`MAX_SHAPES`] shapes, each solved in closed form when it is tried (fastest
 //! first, so usually one), two cruise lengths and two unit mixes per shape, for each a fixed
@@ -19,6 +22,7 @@ use super::remainder::{self, place_velocity_notch, Placement};
 use super::roots::{cube_root, square_root};
 use super::schedule::{Limits64, Schedule, LONGEST_RUN};
 use super::shape::{MainMove, Mix};
+use super::volumes;
 use crate::division::{div, div_ceil, div_rem};
 
 /// One shape: ramps `(a, b)`, a unit mix, a velocity notch of `notch` units, phase V from cycle
@@ -281,6 +285,11 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
         limits,
         with_unit: false,
     };
+    // Short moves where only the jerk binds as a sum of unit volumes ([`volumes`]) first: the
+    // search's shapes mostly leave them remainders their pairs have no room for.
+    if volumes::plan(distance, direction, limits, out) {
+        return true;
+    }
     // Where only a jerk of up to three raw units binds, notch pairs anywhere the jerk has room
     // ([`pure_jerk`]) first: the search's shapes mostly leave it remainders it cannot place.
     if pure_jerk::first(distance, direction, limits, out) {
