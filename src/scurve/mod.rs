@@ -48,9 +48,9 @@
 //! are planned by [`pure_jerk`] next; moves the shapes near the optimum cannot finish are
 //! planned by [`pure_jerk`] where only the jerk binds, else try up to 24 more pairs of ramps
 //! around it, then the same shapes with one unit's area more in the remainder, which costs more
-//! (9 of 3,000 random moves from fractional positions with a jerk of 1 to 15 raw units take more
-//! than SPEC §16's 20,000, all long moves with a jerk of 1 to 3 raw units, the worst 30,327;
-//! other samples reach about 30,500). A step is at
+//! (3 of 3,000 random moves from fractional positions with a jerk of 1 to 15 raw units take more
+//! than SPEC §16's 20,000, all long moves with a jerk of 1 to 3 raw units, the worst 23,970;
+//! other samples have 8 to 12 of 5,000 over and reach about 30,500). A step is at
 //! most 33 Cortex-M4 instructions (36 on the cycles after an abrupt stop), 18 on x86.
 
 mod predict;

@@ -59,6 +59,19 @@ const COUNTS: u64 = 4;
 /// kind (a jerk of 1 to 15 raw units, under 2^17 raw units) found none over the bound (README).
 const WIDEST: u64 = 3;
 
+/// A main move is tried only if its rest is under this fraction `(p, q)` = p/q of the pairs'
+/// reach (not merely within it): such a rest needs the pairs at nearly their widest spans,
+/// where the room is scarcest, and a try costs 3,500–5,000 Cortex-M4 instructions. Measured
+/// over the `pure_jerk` tries of moves of 40 cycles or more in four samples of moves from
+/// fractional positions: a rest of at least 0.8 of the reach fitted in 47 of 177 tries, under it
+/// in 50–90 % (by tenths of the reach and jerks of 1 to 3 raw units). Over
+/// those samples (seeds 17, 99, 5, 1234) moves over SPEC §16's 20,000 went 9, 12, 13, 13 → 3,
+/// 8, 12, 9, the worst of the first 30,327 → 23,918 (0.7: 3, 8, 12, 9 with more cycles; 0.86:
+/// 4, 8, 12, 9; 0.9: 5, 9, 13, 10). Of `tools/ab_plans.sh`'s 200,000 moves 322 plans differ, 165
+/// a cycle or so longer (+168 cycles in all), every one still within the bound (a plan here is
+/// at most `⌊∛(32D/J)⌋ + 3` cycles by construction).
+const NEAR_REACH: (u64, u64) = (4, 5);
+
 /// Candidates checked per pass at most (two passes): the cost stays bounded whatever the move.
 const MAX_CHECKS: u32 = 64;
 
@@ -284,7 +297,9 @@ fn plan(
                 if full - distance > (jerk - 1) * area + reach {
                     break;
                 }
-                if rest <= reach {
+                // A rest near the reach needs pairs at their widest spans, where the room is
+                // scarcest ([`NEAR_REACH`]).
+                if NEAR_REACH.1 * rest < NEAR_REACH.0 * reach {
                     let groups = [
                         Group {
                             count: jerk - early,
