@@ -66,7 +66,7 @@ const WIDEST: u64 = 3;
 /// fractional positions: a rest of at least 0.8 of the reach fitted in 47 of 177 tries, under it
 /// in 50–90 % (by tenths of the reach and jerks of 1 to 3 raw units). Over
 /// those samples (seeds 17, 99, 5, 1234) moves over SPEC §16's 20,000 went 9, 12, 13, 13 → 3,
-/// 8, 12, 9, the worst of the first 30,327 → 23,918 (0.7: 3, 8, 12, 9 with more cycles; 0.86:
+/// 8, 12, 9, the worst of the first 30,327 → 23,970 (0.7: 3, 8, 12, 9 with more cycles; 0.86:
 /// 4, 8, 12, 9; 0.9: 5, 9, 13, 10). Of `tools/ab_plans.sh`'s 200,000 moves 322 plans differ, 165
 /// a cycle or so longer (+168 cycles in all), every one still within the bound (a plan here is
 /// at most `⌊∛(32D/J)⌋ + 3` cycles by construction).
@@ -332,10 +332,7 @@ fn plan(
                         // Checked cycle by cycle by `Profile::fits`; the tests run with debug
                         // assertions, and every plan made here is replayed as well.
                         debug_assert!(
-                            {
-                                let replay = out.replay(direction, limits);
-                                replay.within_limits && replay.distance == i128::from(distance)
-                            },
+                            out.lands(direction, limits, distance),
                             "a plan that breaks a limit or misses the distance: {:?}",
                             (&main, &placement, distance, limits)
                         );

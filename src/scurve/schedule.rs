@@ -579,25 +579,25 @@ impl Schedule {
             // count ≤ J < 2^31: every sum here stays within ±2^33.
             let count = group.count as i64 * direction;
             for (cycle, corner) in corners(group.a, group.b, group.c) {
-                if let Some(change) = changes.get_mut(cycle as usize).filter(|_| cycle < total) {
-                    *change += corner * count;
+                // cycle < total < MAX_CHANGES.
+                if cycle < total {
+                    changes[cycle as usize] += corner * count;
                 }
             }
         }
         let total = total as usize;
-        let (mut start, mut run_jerk, mut written) = (0, changes[0], 0);
+        let (mut start, mut run_jerk, mut written) = (0u32, changes[0], 0);
         let mut jerk = run_jerk;
         for (cycle, &change) in changes.iter().enumerate().take(total).skip(1) {
             jerk += change;
             if jerk != run_jerk {
-                self.runs[written] = (cycle as u32 - start).run(run_jerk, written as u16 + 1);
-                written += 1;
+                self.write_run(&mut written, cycle as u32 - start, run_jerk);
                 (start, run_jerk) = (cycle as u32, jerk);
             }
         }
-        self.runs[written] = (total as u32 - start).run(run_jerk, written as u16 + 1);
-        self.runs[written + 1] = Run::END;
-        self.len = written + 2;
+        self.write_run(&mut written, total as u32 - start, run_jerk);
+        self.runs[written] = Run::END;
+        self.len = written + 1;
         let (a, b) = (first.a, first.b);
         self.plan = ScurvePlan {
             phases: [a, b - a, a, total as u64 - 2 * (a + b), a, b - a, a],
@@ -668,7 +668,7 @@ impl Schedule {
                 }
                 // The jerk from `at` on is `jerk`: a new run unless it is the open run's.
                 if jerk != run_jerk {
-                    self.write_run(&mut written, at - start, run_jerk);
+                    self.write_run(&mut written, at - start, i64::from(run_jerk));
                     (start, run_jerk) = (at, jerk);
                 }
                 at = cycle;
@@ -677,10 +677,10 @@ impl Schedule {
         }
         // The jerk from `at` to the last cycle is `jerk`; the end marker follows.
         if jerk != run_jerk {
-            self.write_run(&mut written, at - start, run_jerk);
+            self.write_run(&mut written, at - start, i64::from(run_jerk));
             start = at;
         }
-        self.write_run(&mut written, total - start, jerk);
+        self.write_run(&mut written, total - start, i64::from(jerk));
         self.runs[written] = Run::END;
         self.len = written + 1;
     }
@@ -688,11 +688,19 @@ impl Schedule {
     /// Writes the run of `cycles` at `jerk` at index `written`, moving on; the slots before the
     /// end marker's are enough (see [`MAX_CHANGES`]).
     #[inline(always)]
-    fn write_run<C: Cycle>(&mut self, written: &mut usize, cycles: C, jerk: i32) {
+    fn write_run<C: Cycle>(&mut self, written: &mut usize, cycles: C, jerk: i64) {
         if *written < MAX_CHANGES - 1 {
-            self.runs[*written] = cycles.run(i64::from(jerk), *written as u16 + 1);
+            self.runs[*written] = cycles.run(jerk, *written as u16 + 1);
             *written += 1;
         }
+    }
+
+    /// Whether the sealed schedule, replayed in `direction`, keeps `limits` on every cycle, ends
+    /// at rest and covers exactly `distance` (2^-32 counts): what every planner's debug
+    /// assertion checks of the plan it made.
+    pub fn lands(&self, direction: i64, limits: Limits64, distance: u64) -> bool {
+        let replay = self.replay(direction, limits);
+        replay.within_limits && replay.distance == i128::from(distance)
     }
 
     /// Replays the sealed schedule run by run, in the move's direction (`direction` ±1): its

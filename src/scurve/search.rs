@@ -685,10 +685,7 @@ fn finish(
     // The planner's inequalities keep the limits and its arithmetic the distance; the tests run
     // with debug assertions, so every plan they make is replayed and checked here.
     debug_assert!(
-        {
-            let replay = out.replay(move_.direction, move_.limits);
-            replay.within_limits && replay.distance == i128::from(move_.distance)
-        },
+        out.lands(move_.direction, move_.limits, move_.distance),
         "a plan that breaks a limit or misses the distance: {:?}",
         (main, placement, move_)
     );

@@ -51,6 +51,16 @@ static UNITS: [u16; VOLUMES] = units();
 /// The cycles field of a volume no unit covers: more than any move here takes.
 const NONE: u16 = 63;
 
+/// The cycles `a + b + c` of a [`UNITS`] entry ([`NONE`] for no unit).
+const fn unit_cycles(unit: u16) -> u16 {
+    unit & 63
+}
+
+/// The ramps `(a, b)` of a [`UNITS`] entry.
+const fn unit_ramps(unit: u16) -> (u64, u64) {
+    ((unit >> 6 & 15) as u64, (unit >> 10) as u64)
+}
+
 /// Per cycle count `N ≤ MOST_CYCLES`, the largest volume of a unit of at most `N` cycles (0
 /// when there is none, `N < 4`).
 static LARGEST: [u16; MOST_CYCLES as usize + 1] = largest();
@@ -66,7 +76,7 @@ const fn units() -> [u16; VOLUMES] {
             while a + b + c <= most {
                 let volume = a * b * c;
                 let cycles = (a + b + c) as u16;
-                if cycles < table[volume] & 63 {
+                if cycles < unit_cycles(table[volume]) {
                     table[volume] = cycles | (a as u16) << 6 | (b as u16) << 10;
                 }
                 c += 1;
@@ -83,7 +93,7 @@ const fn largest() -> [u16; MOST_CYCLES as usize + 1] {
     let mut largest = [0; MOST_CYCLES as usize + 1];
     let mut volume = 1;
     while volume < VOLUMES {
-        let cycles = (table[volume] & 63) as usize;
+        let cycles = unit_cycles(table[volume]) as usize;
         let mut n = cycles;
         while n <= MOST_CYCLES as usize {
             largest[n] = volume as u16;
@@ -116,7 +126,7 @@ impl Volumes {
         volume == 0
             || UNITS
                 .get(volume as usize)
-                .is_some_and(|&unit| u64::from(unit & 63) <= self.cycles)
+                .is_some_and(|&unit| u64::from(unit_cycles(unit)) <= self.cycles)
     }
 
     /// The largest volume of at most `self.cycles` cycles up to `most` (0 if none).
@@ -124,7 +134,7 @@ impl Volumes {
         let mut volume = most.min(self.largest);
         while volume > 0 && self.reads < MAX_READS {
             self.reads += 1;
-            if u64::from(UNITS[volume as usize] & 63) <= self.cycles {
+            if u64::from(unit_cycles(UNITS[volume as usize])) <= self.cycles {
                 return volume;
             }
             volume -= 1;
@@ -257,8 +267,7 @@ pub(super) fn plan(distance: u64, direction: i64, limits: Limits64, out: &mut Sc
 fn build(sum: &Sum, distance: u64, direction: i64, limits: Limits64, out: &mut Schedule) -> bool {
     let mut groups = [Group::default(); MAX_GROUPS];
     for (group, &(count, volume)) in groups.iter_mut().zip(&sum.groups[..sum.len]) {
-        let unit = UNITS[volume as usize];
-        let (a, b) = (u64::from(unit >> 6 & 15), u64::from(unit >> 10));
+        let (a, b) = unit_ramps(UNITS[volume as usize]);
         // a, b ≥ 1 for every volume a unit covers (the only ones summed).
         let Some(c) = volume.checked_div(a * b) else {
             return false;
@@ -270,10 +279,7 @@ fn build(sum: &Sum, distance: u64, direction: i64, limits: Limits64, out: &mut S
     // to the distance; the tests run with debug assertions, so every plan made here is
     // replayed and checked as well.
     debug_assert!(
-        !built || {
-            let replay = out.replay(direction, limits);
-            replay.within_limits && replay.distance == i128::from(distance)
-        },
+        !built || out.lands(direction, limits, distance),
         "a plan that breaks a limit or misses the distance: {:?}",
         (&groups[..sum.len], distance, limits)
     );
@@ -305,13 +311,13 @@ mod tests {
             fewest[volume] = fewest[volume].min(a + b + c);
         }
         for (volume, &unit) in UNITS.iter().enumerate() {
-            let cycles = u64::from(unit & 63);
+            let cycles = u64::from(unit_cycles(unit));
             if fewest[volume] == u64::MAX {
                 assert_eq!(unit, NONE, "volume {volume}");
                 continue;
             }
             assert_eq!(cycles, fewest[volume], "volume {volume}");
-            let (a, b) = (u64::from(unit >> 6 & 15), u64::from(unit >> 10));
+            let (a, b) = unit_ramps(unit);
             assert!(1 <= a && a <= b, "volume {volume}");
             let c = volume as u64 / (a * b);
             assert_eq!(a * b * c, volume as u64);
