@@ -121,6 +121,66 @@ fn no_floating_point_in_planning_or_stepping() {
     );
 }
 
+/// Every source file of the S-curve (`src/scurve/`, its folders included, read from disk so
+/// that a file added there is checked without being listed): none names a floating-point type
+/// outside comments and its unit tests (`#[cfg(test)]` on, where a test may compute a float
+/// reference). Issue #11: the S-curve module's planning is integer-only.
+#[test]
+fn no_floating_point_anywhere_in_the_s_curve() {
+    fn sources(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                sources(&path, out);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                out.push(path);
+            }
+        }
+    }
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src/scurve");
+    let mut paths = Vec::new();
+    sources(&root, &mut paths);
+    // The planners and the table at least (a walk that found nothing would pass).
+    for file in [
+        "mod.rs",
+        "pure_jerk.rs",
+        "volumes.rs",
+        "tiny/mod.rs",
+        "tiny/table.rs",
+    ] {
+        assert!(paths.contains(&root.join(file)), "{file} not found");
+    }
+    let mut found = Vec::new();
+    for path in &paths {
+        let source = std::fs::read_to_string(path).unwrap();
+        let lines: Vec<&str> = source.lines().collect();
+        for (number, line) in lines.iter().enumerate() {
+            // The file's unit tests: a top-level `#[cfg(test)]` module (not a test-only item
+            // within the code, which is indented).
+            let next = lines.get(number + 1).copied().unwrap_or("");
+            if *line == "#[cfg(test)]" && next.starts_with("mod ") {
+                break;
+            }
+            let code = line.split("//").next().unwrap_or("");
+            for word in ["f32", "f64", "Float"] {
+                if names(code, word) {
+                    found.push(format!(
+                        "{}:{}: {}",
+                        path.display(),
+                        number + 1,
+                        line.trim()
+                    ));
+                }
+            }
+        }
+    }
+    assert!(
+        found.is_empty(),
+        "floating point in the S-curve:\n{}",
+        found.join("\n")
+    );
+}
+
 /// The check itself finds what it must (and not what it must not).
 #[test]
 fn the_check_finds_floats() {

@@ -14,6 +14,8 @@
 //! - [`volumes`]: short moves where only the jerk binds (under about 35 cycles, mostly what a
 //!   stop leaves), planned first as a sum of at most `J` unit volumes `a·b·c` read off a table
 //!   built at compile time — no notch pairs, no shapes;
+//! - [`tiny`]: tiny moves with a jerk of one or two raw units (a few dozen raw units, what a
+//!   stop often leaves), each distance's fastest plan read from a table;
 //! - [`pure_jerk`]: moves where only the jerk binds (a few dozen cycles with a jerk of a few raw
 //!   units, mostly what a stop leaves), whose notch pairs go wherever the jerk has room;
 //! - [`roots`]: the integer square and cube roots the search starts from;
@@ -43,14 +45,15 @@
 //! 15,275 at worst over the first 1,000 random moves, 16,871 over 5,000, 17,148 over 20,000,
 //! 19,993 over 100,000 (a jerk of one raw unit, whose first shapes' remainders do not fit); on
 //! the x86 development machine a few hundred nanoseconds median, under about 2 µs at worst.
-//! Short moves where only a jerk of three raw units or more binds (mostly from fractional
-//! positions) are sums of unit volumes ([`volumes`]) first, and those with a jerk of up to three
-//! are planned by [`pure_jerk`] next; moves the shapes near the optimum cannot finish are
+//! Tiny moves with a jerk of one or two raw units are read from a table of their fastest plans
+//! ([`tiny`]: no plan of fewer cycles exists); short moves where only a jerk of three raw units
+//! or more binds (mostly from fractional positions) are sums of unit volumes ([`volumes`]), and
+//! those with a jerk of up to three are planned by [`pure_jerk`] next; moves the shapes near the optimum cannot finish are
 //! planned by [`pure_jerk`] where only the jerk binds, else try up to 24 more pairs of ramps
 //! around it, then the same shapes with one unit's area more in the remainder, which costs more
 //! (3 of 3,000 random moves from fractional positions with a jerk of 1 to 15 raw units take more
-//! than SPEC §16's 20,000, all long moves with a jerk of 1 to 3 raw units, the worst 23,970;
-//! other samples have 8 to 12 of 5,000 over and reach about 30,500). A step is at
+//! than SPEC §16's 20,000, all long moves with a jerk of 1 to 3 raw units, the worst 23,832;
+//! other samples have 2 to 7 of 5,000 over and reach about 23,800). A step is at
 //! most 33 Cortex-M4 instructions (36 on the cycles after an abrupt stop), 18 on x86.
 
 mod predict;
@@ -61,6 +64,7 @@ mod schedule;
 mod search;
 mod shape;
 mod stop;
+mod tiny;
 mod volumes;
 
 use fixed::types::I32F32;

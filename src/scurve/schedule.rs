@@ -586,18 +586,11 @@ impl Schedule {
             }
         }
         let total = total as usize;
-        let (mut start, mut run_jerk, mut written) = (0u32, changes[0], 0);
-        let mut jerk = run_jerk;
-        for (cycle, &change) in changes.iter().enumerate().take(total).skip(1) {
-            jerk += change;
-            if jerk != run_jerk {
-                self.write_run(&mut written, cycle as u32 - start, run_jerk);
-                (start, run_jerk) = (cycle as u32, jerk);
-            }
-        }
-        self.write_run(&mut written, total as u32 - start, run_jerk);
-        self.runs[written] = Run::END;
-        self.len = written + 1;
+        let jerks = changes[..total].iter().scan(0i64, |jerk, &change| {
+            *jerk += change;
+            Some(*jerk)
+        });
+        self.seal_per_cycle(jerks);
         let (a, b) = (first.a, first.b);
         self.plan = ScurvePlan {
             phases: [a, b - a, a, total as u64 - 2 * (a + b), a, b - a, a],
@@ -606,6 +599,44 @@ impl Schedule {
             peak_velocity: I32F32::ZERO,
         };
         true
+    }
+
+    /// Makes this the schedule of `jerks`, the jerk (raw units, signed as the move goes) on
+    /// each of the move's cycles in turn, its plan's phases `phases`, sealed; `false` (and
+    /// nothing built) if the move is longer than [`MAX_CHANGES`] − 1 cycles. For
+    /// [`super::tiny`]'s tabled plans, a dozen cycles or so.
+    pub fn build_per_cycle(&mut self, jerks: &[i64], phases: [u64; 7]) -> bool {
+        if jerks.len() >= MAX_CHANGES {
+            return false;
+        }
+        self.seal_per_cycle(jerks.iter().copied());
+        self.plan = ScurvePlan {
+            phases,
+            total: jerks.len() as u64,
+            peak_acceleration: I32F32::ZERO,
+            peak_velocity: I32F32::ZERO,
+        };
+        true
+    }
+
+    /// Seals the jerk on each cycle of a move of fewer than [`MAX_CHANGES`] cycles, in turn,
+    /// as runs: cycles of equal jerk are one run, closed by the end marker (setting the jerk to
+    /// zero for good: the move is at rest after its last cycle).
+    fn seal_per_cycle(&mut self, mut jerks: impl Iterator<Item = i64>) {
+        let mut written = 0;
+        if let Some(first) = jerks.next() {
+            let (mut start, mut run_jerk, mut cycle) = (0u32, first, 1);
+            for jerk in jerks {
+                if jerk != run_jerk {
+                    self.write_run(&mut written, cycle - start, run_jerk);
+                    (start, run_jerk) = (cycle, jerk);
+                }
+                cycle += 1;
+            }
+            self.write_run(&mut written, cycle - start, run_jerk);
+        }
+        self.runs[written] = Run::END;
+        self.len = written + 1;
     }
 
     /// [`Self::seal`]s the changes of `main` and `placement` in the direction `sign`, its cycles

@@ -22,6 +22,7 @@ use super::remainder::{self, place_velocity_notch, Placement};
 use super::roots::{cube_root, square_root};
 use super::schedule::{Limits64, Schedule, LONGEST_RUN};
 use super::shape::{MainMove, Mix};
+use super::tiny;
 use super::volumes;
 use crate::division::{div, div_ceil, div_rem};
 
@@ -285,6 +286,11 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
         limits,
         with_unit: false,
     };
+    // Tiny moves with a jerk of 1 or 2 raw units from the table of their fastest plans
+    // ([`tiny`]): the shapes below have the least room for their pairs there.
+    if tiny::plan(distance, direction, limits, out) {
+        return true;
+    }
     // Short moves where only the jerk binds as a sum of unit volumes ([`volumes`]) first: the
     // search's shapes mostly leave them remainders their pairs have no room for.
     if volumes::plan(distance, direction, limits, out) {
