@@ -265,6 +265,15 @@ fn plan(
     let mut fits = Fits::EMPTY;
     for total in counts {
         for a in first_ramp(distance, jerk, total)..=total / 4 {
+            // The longest second ramp, `⌊N/2⌋ − a` (`c ≥ a + b`), covers the most: `b·(s − b)`
+            // grows up to `s/2`. Where even it does not cover the distance, no main move of this
+            // first ramp does, found by multiplications before the division and the root below
+            // (`J·a·b·c` < 2^32·2^7·2^8·2^9: moves here are under 2^9 cycles). [`first_ramp`]
+            // bounds `c` by the cycles alone, so many first ramps it lets through have none.
+            let widest = total / 2 - a;
+            if jerk * a * widest * (total - a - widest) < distance {
+                continue;
+            }
             let reach = reach(total, a);
             // a·b·(s − b)·J ≥ D with s = N − a: b(s − b) ≥ ⌈D/(J·a)⌉ from the root's floor up.
             let s = total - a;
@@ -1222,6 +1231,20 @@ mod tests {
             met += usize::from(longest == 0);
         }
         assert!(met > 10, "{met}");
+    }
+
+    /// The widest second ramp `⌊N/2⌋ − a` covers the most of any with the first ramp `a` (by
+    /// brute force over every second ramp, `c ≥ a + b`): where it does not cover a distance,
+    /// [`plan`] passes the first ramp by, and none would have.
+    #[test]
+    fn the_widest_second_ramp_covers_the_most() {
+        for total in 4..=120u64 {
+            for a in 1..=total / 4 {
+                let widest = total / 2 - a;
+                let most = (a..=widest).map(|b| a * b * (total - a - b)).max().unwrap();
+                assert_eq!(most, a * widest * (total - a - widest), "{total} {a}");
+            }
+        }
     }
 
     /// Where [`small_rest_may_fit`] says no, no pairs are tried at all: for every main move of
