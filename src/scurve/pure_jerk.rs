@@ -510,9 +510,10 @@ impl Profile {
     }
 
     /// As `Profile::of` (the tests' constructor), in place — but for units all alike only the
-    /// room: most main moves tried take no pairs at all, decided by the room alone (every one
-    /// of 748 that failed over four samples of moves from fractional positions), so their
-    /// pieces wait for a candidate to check ([`Self::ready`]).
+    /// room: most main moves tried that take no pairs fail before a candidate is checked, on
+    /// the room and the spans alone (every one of 748 that failed over four samples of moves
+    /// from fractional positions), so their pieces wait for a candidate to check
+    /// ([`Self::ready`]).
     fn set(&mut self, groups: &[Group; 2], total: u64) {
         let [full, early] = groups;
         if early.count > 0 || full.count != self.limits.jerk {
@@ -853,8 +854,6 @@ impl Fits {
     /// before the last cycle), each pair of them whose spans are not empty.
     fn fill(&mut self, profile: &Profile) {
         let fits = self;
-        fits.lens = [0; WIDEST as usize];
-        fits.reach = [(i32::MAX, i32::MIN); WIDEST as usize];
         let last = profile.total as i32 - 1;
         let (starts, raises) = (&mut fits.starts, &mut fits.raises);
         for w in 1..=WIDEST as i32 {
@@ -877,11 +876,15 @@ impl Fits {
                 }
             }
             let i = w as usize - 1;
+            // The count and the reach in locals, written back once (kept in the table, they
+            // were loaded and stored for every fit).
+            let (mut len, mut reach) = (0, (i32::MAX, i32::MIN));
+            let width_fits = &mut fits.fits[i];
             // The first `MAX_FITS` pairs of intervals whose spans are not empty: once that many
             // are kept, the rest would be passed over, so they are not looked at.
             'pairs: for &starts in &starts[..n_starts] {
                 for &raises in &raises[..n_raises] {
-                    if fits.lens[i] == MAX_FITS {
+                    if len == MAX_FITS {
                         break 'pairs;
                     }
                     let mut fit = Fit {
@@ -892,13 +895,14 @@ impl Fits {
                     let (lo, hi) = fit.spans();
                     if lo <= hi {
                         fit.reach = (w * lo, w * hi);
-                        fits.fits[i][fits.lens[i]] = fit;
-                        fits.lens[i] += 1;
-                        let reach = &mut fits.reach[i];
-                        *reach = (reach.0.min(fit.reach.0), reach.1.max(fit.reach.1));
+                        width_fits[len] = fit;
+                        len += 1;
+                        reach = (reach.0.min(fit.reach.0), reach.1.max(fit.reach.1));
                     }
                 }
             }
+            fits.lens[i] = len;
+            fits.reach[i] = reach;
         }
     }
 
