@@ -286,19 +286,19 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
         limits,
         with_unit: false,
     };
-    // Tiny moves with a jerk of 1 or 2 raw units from the table of their fastest plans
-    // ([`tiny`]): the shapes below have the least room for their pairs there.
-    if tiny::plan(distance, direction, limits, out) {
-        return true;
-    }
-    // Short moves where only the jerk binds as a sum of unit volumes ([`volumes`]) first: the
-    // search's shapes mostly leave them remainders their pairs have no room for.
-    if volumes::plan(distance, direction, limits, out) {
-        return true;
-    }
-    // Where only a jerk of up to three raw units binds, notch pairs anywhere the jerk has room
-    // ([`pure_jerk`]) first: the search's shapes mostly leave it remainders it cannot place.
-    if pure_jerk::first(distance, direction, limits, out) {
+    // Moves where only the jerk may bind, under 260 cycles ([`pure_jerk::is_short`]), first
+    // by the planners of such moves, in turn — one test for the three, which most moves fail:
+    if pure_jerk::is_short(distance, limits.jerk)
+        // tiny moves with a jerk of 1 or 2 raw units from the table of their fastest plans
+        // ([`tiny`]): the shapes below have the least room for their pairs there;
+        && (tiny::plan(distance, direction, limits, out)
+        // short moves with a jerk of 3 raw units or more as a sum of unit volumes
+        // ([`volumes`]): the shapes mostly leave them remainders their pairs have no room for;
+            || volumes::plan(distance, direction, limits, out)
+        // with a jerk of up to three raw units, notch pairs anywhere the jerk has room
+        // ([`pure_jerk`]): the shapes mostly leave it remainders it cannot place.
+            || pure_jerk::first(distance, direction, limits, out))
+    {
         return true;
     }
     let mut found = [Shape::default(); MAX_SHAPES];
