@@ -43,7 +43,7 @@
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
 //! checked). Measured (see the README for the commands): 8,703 Cortex-M4 instructions median,
 //! 15,275 at worst over the first 1,000 random moves, 16,871 over 5,000, 17,148 over 20,000,
-//! 19,993 over 100,000 (a jerk of one raw unit, whose first shapes' remainders do not fit); on
+//! 19,982 over 100,000 (a jerk of one raw unit, whose first shapes' remainders do not fit); on
 //! the x86 development machine a few hundred nanoseconds median, under about 2 µs at worst.
 //! Tiny moves with a jerk of one or two raw units are read from a table of their fastest plans
 //! ([`tiny`]: no plan of fewer cycles exists); short moves where only a jerk of three raw units
@@ -51,9 +51,9 @@
 //! those with a jerk of up to three are planned by [`pure_jerk`] next; moves the shapes near the optimum cannot finish are
 //! planned by [`pure_jerk`] where only the jerk binds, else try up to 24 more pairs of ramps
 //! around it, then the same shapes with one unit's area more in the remainder, which costs more
-//! (3 of 3,000 random moves from fractional positions with a jerk of 1 to 15 raw units take more
-//! than SPEC §16's 20,000, all long moves with a jerk of 1 to 3 raw units, the worst 23,832;
-//! other samples have 2 to 7 of 5,000 over and reach about 23,800). A step is at
+//! (of random moves from fractional positions with a jerk of 1 to 15 raw units, 30 of a sample
+//! of 20,000 take more than SPEC §16's 20,000, the worst 31,252, most of them moves of 25 to
+//! 160 cycles with a jerk of 1 to 3 raw units; CI's sample of 3,000 is within it, worst 19,993). A step is at
 //! most 33 Cortex-M4 instructions (36 on the cycles after an abrupt stop), 18 on x86.
 
 mod predict;
