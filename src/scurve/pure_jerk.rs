@@ -1272,35 +1272,43 @@ mod tests {
     #[test]
     fn small_rests_ruled_out_take_nothing() {
         let (mut ruled_out, mut kept) = (0, 0);
-        for jerk in 1..=3 {
-            for total in 4..=48u64 {
-                for a in 1..=total / 4 {
-                    for b in a..=(total / 2 - a) {
-                        let c = total - a - b;
-                        let group = |count, c| Group { count, a, b, c };
-                        let groups = [group(jerk, c), group(0, c - 1)];
-                        let mut profile = Profile::new(wide(jerk));
-                        let mut fits = Fits::EMPTY;
-                        for rest in 1..a {
-                            if small_rest_may_fit(rest, a, b, c) {
-                                kept += 1;
-                                continue;
-                            }
-                            ruled_out += 1;
-                            profile.set(&groups, total);
-                            fits.fill(&profile);
-                            for apart in [true, false] {
-                                let mut checks = 0;
-                                let taken = profile.take(rest, apart, &mut checks, &fits);
-                                assert!(taken.is_none(), "{groups:?} {rest}");
-                                assert_eq!(checks, 0, "{groups:?} {rest}");
-                            }
-                        }
-                    }
+        for (jerk, groups, total) in units_all_alike(48) {
+            let Group { a, b, c, .. } = groups[0];
+            let mut profile = Profile::new(wide(jerk));
+            let mut fits = Fits::EMPTY;
+            for rest in 1..a {
+                if small_rest_may_fit(rest, a, b, c) {
+                    kept += 1;
+                    continue;
+                }
+                ruled_out += 1;
+                profile.set(&groups, total);
+                fits.fill(&profile);
+                for apart in [true, false] {
+                    let mut checks = 0;
+                    let taken = profile.take(rest, apart, &mut checks, &fits);
+                    assert!(taken.is_none(), "{groups:?} {rest}");
+                    assert_eq!(checks, 0, "{groups:?} {rest}");
                 }
             }
         }
         assert!(ruled_out > 1_000 && kept > 1_000, "{ruled_out} {kept}");
+    }
+
+    /// Every main move of `J` units all alike (no early units) of 4 to `most` cycles with a
+    /// jerk of 1 to 3 raw units: `(J, groups, cycles)`.
+    fn units_all_alike(most: u64) -> impl Iterator<Item = (u64, [Group; 2], u64)> {
+        (1..=3).flat_map(move |jerk| {
+            (4..=most).flat_map(move |total| {
+                (1..=total / 4).flat_map(move |a| {
+                    (a..=total / 2 - a).map(move |b| {
+                        let c = total - a - b;
+                        let group = |count, c| Group { count, a, b, c };
+                        (jerk, [group(jerk, c), group(0, c - 1)], total)
+                    })
+                })
+            })
+        })
     }
 
     /// For `J` units all alike (no early ones), [`Profile::set`]'s room in closed form is the
@@ -1309,23 +1317,14 @@ mod tests {
     #[test]
     fn the_room_of_units_all_alike_is_the_pieces_room() {
         let mut compared = 0;
-        for jerk in 1..=3 {
-            for total in 4..=40u64 {
-                for a in 1..=total / 4 {
-                    for b in a..=(total / 2 - a) {
-                        let c = total - a - b;
-                        let group = |count, c| Group { count, a, b, c };
-                        let groups = [group(jerk, c), group(0, c - 1)];
-                        let mut profile = Profile::new(wide(jerk));
-                        profile.set(&groups, total);
-                        assert!(profile.pending.is_some());
-                        let room = (profile.lower().to_vec(), profile.raise().to_vec());
-                        profile.ready();
-                        assert_eq!(room, (profile.lower().to_vec(), profile.raise().to_vec()));
-                        compared += 1;
-                    }
-                }
-            }
+        for (jerk, groups, total) in units_all_alike(40) {
+            let mut profile = Profile::new(wide(jerk));
+            profile.set(&groups, total);
+            assert!(profile.pending.is_some());
+            let room = (profile.lower().to_vec(), profile.raise().to_vec());
+            profile.ready();
+            assert_eq!(room, (profile.lower().to_vec(), profile.raise().to_vec()));
+            compared += 1;
         }
         assert!(compared > 1_000, "{compared}");
     }
