@@ -1080,6 +1080,16 @@ fn first_apart(
     if from1 > last1 || from2 > last2 {
         return None;
     }
+    // One start each (most calls, in short moves: 28 of 30 for 438 raw units with a jerk of 1):
+    // the 16 differences compared with theirs, no mask (about 130 Cortex-M4 instructions a
+    // call with it).
+    if from1 == last1 && from2 == last2 {
+        let apart = from2 - from1;
+        let meet = [0, w1, k1, k1 + w1]
+            .into_iter()
+            .any(|one| [0, w2, k2, k2 + w2].contains(&(one - apart)));
+        return (!meet).then_some((from1, from2));
+    }
     // Differences `s₂ − s₁` from `from2 − last1` (bit 0) on: 24 of them cover every pair of
     // starts looked at.
     let base = from2 - last1;
@@ -1212,6 +1222,25 @@ mod tests {
                 first_apart((from1, to1), (from2, to2), (w1, k1), (w2, k2)),
                 walked
             );
+        }
+    }
+
+    /// One start each, [`first_apart`]'s comparisons without a mask: the walk's answer for
+    /// every pair of starts apart by −6 to 11 cycles, widths up to 3 and spans up to 11.
+    #[test]
+    fn one_start_each_is_the_walk() {
+        for s1 in 0..6 {
+            for s2 in 0..12 {
+                for (w1, k1, w2, k2) in (1..=3).flat_map(|w1| {
+                    (1..12).flat_map(move |k1| {
+                        (1..=3).flat_map(move |w2| (1..12).map(move |k2| (w1, k1, w2, k2)))
+                    })
+                }) {
+                    let walked = distinct((s1, w1, k1), (s2, w2, k2)).then_some((s1, s2));
+                    let found = first_apart((s1, s1), (s2, s2), (w1, k1), (w2, k2));
+                    assert_eq!(found, walked, "{:?}", (s1, s2, w1, k1, w2, k2));
+                }
+            }
         }
     }
 
