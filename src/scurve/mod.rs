@@ -51,7 +51,7 @@
 //! those with a jerk of up to three are planned by [`pure_jerk`] next; moves the shapes near the optimum cannot finish are
 //! planned by [`pure_jerk`] where only the jerk binds, else try up to 24 more pairs of ramps
 //! around it, then the same shapes with one unit's area more in the remainder, which costs more
-//! (of random moves from fractional positions with a jerk of 1 to 15 raw units, 20 of a sample
+//! (of random moves from fractional positions with a jerk of 1 to 15 raw units, 19 of a sample
 //! of 20,000 take more than SPEC §16's 20,000, the worst 29,913, most of them moves of 25 to
 //! 160 cycles with a jerk of 1 to 3 raw units; CI's sample of 3,000 is within it, worst 19,999). A step is at
 //! most 33 Cortex-M4 instructions (36 on the cycles after an abrupt stop), 18 on x86.

@@ -31,9 +31,13 @@ use crate::division::div_ceil;
 
 /// The longest unit the table holds, cycles: moves whose optimum's floor is at most
 /// `MOST_CYCLES − 3` are planned here. The table is `MOST_CYCLES³/32` entries of two bytes
-/// (2.7 KB of flash at 35); the moves from fractional positions that cost the search most are
-/// under 30 cycles.
-const MOST_CYCLES: u64 = 35;
+/// (4 KB of flash at 40, 2.7 KB at 35). 35 → 40, measured on the Cortex-M4 probe over the
+/// moves from fractional positions: instructions −4 % in all, p99 −100 to −400, moves over SPEC
+/// §16's 20,000 in a sample of 20,000 (seed 2026) 20 → 19 (moves with a jerk of 4 or 5 and an
+/// optimum's floor of 33 to 37 had gone to the search, about 24,000 each); `tools/ab_plans.sh`:
+/// 822 of 100,000 such moves a cycle shorter, 490 a cycle longer (within the bound by
+/// construction). 44 (5.3 KB): −6 %, but 925 longer.
+const MOST_CYCLES: u64 = 40;
 
 /// Volumes `0 ..= MOST_CYCLES³/32`: `a·b·c` with `a + b + c ≤ N` and `c ≥ a + b ≥ 2a` is at most
 /// `(N/4)·(N/4)·(N/2)`.
