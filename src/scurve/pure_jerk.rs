@@ -278,16 +278,8 @@ fn plan(
     let mut profile = Profile::new(limits);
     let mut fits = Fits::EMPTY;
     for total in counts {
+        // Every first ramp from the first that covers the distance on: the later ones cover more.
         for a in first_ramp(distance, jerk, total)..=total / 4 {
-            // The longest second ramp, `⌊N/2⌋ − a` (`c ≥ a + b`), covers the most: `b·(s − b)`
-            // grows up to `s/2`. Where even it does not cover the distance, no main move of this
-            // first ramp does, found by multiplications before the division and the root below
-            // (`J·a·b·c` < 2^32·2^7·2^8·2^9: moves here are under 2^9 cycles). [`first_ramp`]
-            // bounds `c` by the cycles alone, so many first ramps it lets through have none.
-            let widest = total / 2 - a;
-            if jerk * a * widest * (total - a - widest) < distance {
-                continue;
-            }
             let reach = reach(total, a);
             // a·b·(s − b)·J ≥ D with s = N − a: b(s − b) ≥ ⌈D/(J·a)⌉ from the root's floor up.
             let s = total - a;
@@ -437,15 +429,20 @@ fn small_rest_may_fit(rest: u64, a: u64, b: u64, c: u64) -> bool {
     false
 }
 
-/// The shortest first ramp `a` of a main move of `total` cycles that can cover `distance`:
-/// one unit covers `a·b·(s − b)` with `s = total − a`, at most `a·⌊s²/4⌋`, so `J` of them
-/// need `J·a·⌊s²/4⌋ ≥ D`. That grows with `a` up to `total/4` (from `a` to `a + 1` it
-/// changes by `⌊(s − 1)²/4⌋ − a·⌊s/2⌋ ≥ s·(s − 2 − 2a)/4 ≥ 0`, as `s ≥ 3a`), so a binary
-/// search finds it: the first ramps below cannot cover the distance at all, and most of a
-/// long move's are (a quarter of its cycles), each a division in [`plan`].
+/// The shortest first ramp `a` of a main move of `total` cycles that can cover `distance`.
+///
+/// Of `tb(a, b, c)` with `c ≥ a + b`, the longest second ramp, `b = h − a` with `h = ⌊N/2⌋`,
+/// covers the most: `a·b·c = a·b·(N − a − b)` grows with `b` up to `(N − a)/2` (a test holds
+/// it). So `J` units need `J·a·(h − a)·(N − h) ≥ D`, which grows with `a` up to `N/4` (from `a`
+/// to `a + 1` by `(N − h)·(h − 2a − 1) ≥ 0`, as `2a + 2 ≤ h` there), and a binary search finds
+/// the first `a` that does: none before it covers the distance and every one after it does.
+/// (It once bounded `b` by the cycles alone, `J·a·⌊(N − a)²/4⌋ ≥ D`, and [`plan`] passed by
+/// the ramps that bound let through one by one — a quarter of a long move's cycles, about
+/// 1,300 Cortex-M4 instructions on the costliest moves from fractional positions.)
 fn first_ramp(distance: u64, jerk: u64, total: u64) -> u64 {
-    // J·a·⌊s²/4⌋ < 2^32 · 2^8 · 2^16 (moves here are under 2^9 cycles): no overflow.
-    let covers = |a: u64| jerk * a * ((total - a) * (total - a) / 4) >= distance;
+    // `J·a·b·c` < 2^32·2^7·2^8·2^9 (moves here are under 2^9 cycles): no overflow.
+    let half = total / 2;
+    let covers = |a: u64| jerk * a * (half - a) * (total - half) >= distance;
     // The last ramp that does not cover it (0 does not; `total/4 + 1`, past the ramps, is taken
     // to), and the next.
     last_true(0, total / 4 + 1, |a| !covers(a)) + 1
@@ -1464,19 +1461,25 @@ mod tests {
         assert!(checked[0] > 1_000 && checked[1] > 10_000, "{checked:?}");
     }
 
-    /// The first ramp that can cover the distance is the first of `1..=total/4` with
-    /// `J·a·⌊(total − a)²/4⌋ ≥ D`, found by looking at each in turn.
+    /// The first ramp that can cover the distance is the first of `1..=total/4` with a main
+    /// move `tb(a, b, c)`, `a ≤ b`, `c ≥ a + b`, `a + b + c = total`, of `J·a·b·c ≥ D`, found by
+    /// looking at each in turn, and every later one has such a main move too.
     #[test]
     fn the_shortest_first_ramp_is_the_first_that_covers() {
         for jerk in [1u64, 2, 7, 1 << 20] {
             for total in 1..70u64 {
                 let most = jerk * total.pow(3) / 16 + 2;
                 for distance in (1..=most).step_by((most / 500).max(1) as usize) {
-                    let covers = |a: u64| jerk * a * ((total - a).pow(2) / 4) >= distance;
-                    let expected = (1..=total / 4)
-                        .find(|&a| covers(a))
-                        .unwrap_or(total / 4 + 1);
-                    let expected = expected.max(1);
+                    let covers = |a: u64| {
+                        (a..=total)
+                            .filter(|&b| total >= 2 * (a + b))
+                            .any(|b| jerk * a * b * (total - a - b) >= distance)
+                    };
+                    let first = (1..=total / 4).find(|&a| covers(a));
+                    if let Some(first) = first {
+                        assert!((first..=total / 4).all(covers), "{distance} in {total}");
+                    }
+                    let expected = first.unwrap_or(total / 4 + 1);
                     assert_eq!(
                         first_ramp(distance, jerk, total),
                         expected,
