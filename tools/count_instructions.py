@@ -1153,6 +1153,9 @@ def main() -> int:
                         help="random moves of under 2^17 raw units with a jerk of 1 to 15 raw units, from "
                              "fractional positions (what stops leave), whose plan is counted (reported; "
                              "default %(default)s)")
+    parser.add_argument("--sub-count-seed", type=int, default=17,
+                        help="the seed of the --sub-count-moves sample (default %(default)s, CI's; the "
+                             "README's other samples are 99, 5, 1234 and 2026)")
     parser.add_argument("--replan-moves", type=int, default=0,
                         help="random moves (the first N of --moves' list) planned in place into a "
                              "generator at rest, SCurve::set_parameters (reported; default %(default)s)")
@@ -1211,7 +1214,7 @@ def main() -> int:
             replans = measure_replans(probe, args.replan_moves, args.top)
         sub_counts: list[int] = []
         if args.sub_count_moves:
-            sub_counts = measure_sub_count(probe, args.sub_count_moves, args.top)
+            sub_counts = measure_sub_count(probe, args.sub_count_moves, args.top, args.sub_count_seed)
         print("== stepping: probe_step, one call per cycle")
         stepping_started = time.monotonic()
         per_phase: list[list[int]] = [[], [], [], []]
