@@ -23,8 +23,9 @@
 //!
 //! The search calls it after its shapes, where their plan is more than three cycles over the
 //! optimum or missing ([`improve`]), or before them where the jerk is at most three raw units
-//! ([`first`], the pass with the pairs' impulses on distinct cycles, and for the shortest
-//! moves the other as well; [`improve`] makes the other if the search's plan then needs it).
+//! ([`first`], the pass with the pairs' impulses apart — no cycle with two of one sign, unless
+//! the main move has room for two wherever it has room for one — and for the shortest moves
+//! the other as well; [`improve`] makes the other if the search's plan then needs it).
 //! Where both passes run, each main move is tried with both, its room found once.
 //!
 //! Its cost is bounded: at most [`COUNTS`] cycle counts, for each a few main moves per first ramp
@@ -100,7 +101,7 @@ const FIRST_JERK: u64 = 3;
 const SHORTEST: u64 = 12;
 
 /// Plans a move of this module's class with a jerk of at most [`FIRST_JERK`] here, before the
-/// search, with the pairs' impulses on distinct cycles — and, for a move under [`SHORTEST`]
+/// search, with the pairs' impulses apart ([`first_apart`]) — and, for a move under [`SHORTEST`]
 /// cycles, also at the ends of their ranges ([`improve`] tries those for the others if the
 /// search's plan is then too long): `false`, and `out` unusable, if no plan was found or the
 /// move is not one of them.
@@ -121,8 +122,8 @@ pub(super) fn first(distance: u64, direction: i64, limits: Limits64, out: &mut S
 }
 
 /// The passes [`first`] makes for a move of this module's class with `jerk` and the optimum's
-/// floor `floor` (`true`: the pairs' impulses on distinct cycles; `false`: at the ends of their
-/// ranges), none above [`FIRST_JERK`]: [`improve`] makes the others.
+/// floor `floor` (`true`: the pairs' impulses apart, [`first_apart`]; `false`: at the ends of
+/// their ranges), none above [`FIRST_JERK`]: [`improve`] makes the others.
 fn first_passes(jerk: u64, floor: u64) -> &'static [bool] {
     if jerk > FIRST_JERK {
         &[]
@@ -161,7 +162,7 @@ pub(super) fn improve(
         u64::MAX
     };
     let last = longest.min(floor + COUNTS - 1);
-    // With the pairs' impulses on distinct cycles (each candidate then mostly fits), then with
+    // With the pairs' impulses apart (each candidate then mostly fits), then with
     // them at the ends of their ranges, where they may meet: those `first` did not try. `out`
     // is written only with a plan found.
     let passes: &[bool] = match first_passes(limits.jerk, floor) {
@@ -257,8 +258,8 @@ fn optimum_floor(scaled: u64, distance: u64, limits: Limits64) -> Option<u64> {
 }
 
 /// The first plan found, fewest cycles first, with a cycle count in `counts`, into `out`: for
-/// each main move, its pairs placed as each of `passes` has them (`true`: on distinct cycles;
-/// `false`: at the ends of their ranges), each pass with its own [`MAX_CHECKS`]. (The passes
+/// each main move, its pairs placed as each of `passes` has them (`true`: their impulses
+/// apart, [`first_apart`]; `false`: at the ends of their ranges), each pass with its own [`MAX_CHECKS`]. (The passes
 /// once ran one after the other over every main move: a main move both tried had its room
 /// found twice, and a plan the first pass found on a later cycle count was kept over one the
 /// second would have found on an earlier one.)
@@ -490,6 +491,11 @@ struct Profile {
     /// The main move whose pieces and fast cycles are still to be found ([`Self::ready`]):
     /// for units all alike, [`Self::set`] writes the room alone.
     pending: Option<[Group; 2]>,
+    /// Whether every cycle with room for an impulse of a sign has room for two: true of
+    /// `J ≥ 2` units all alike, whose jerk is `J`, 0 or `−J` on every cycle (where a lowering
+    /// impulse has room, the jerk is 0 or `J`, so `−2 ≥ −J` has room too; likewise raising).
+    /// Then two pairs need not keep their impulses apart ([`first_apart`]).
+    doubles: bool,
 }
 
 impl Profile {
@@ -506,6 +512,7 @@ impl Profile {
             raise: [(0, 0); MAX_INTERVALS],
             raises: 0,
             pending: None,
+            doubles: false,
         }
     }
 
@@ -530,6 +537,7 @@ impl Profile {
         if early.count > 0 || full.count != self.limits.jerk {
             self.set_pieces(groups, total);
             self.pending = None;
+            self.doubles = false;
             return;
         }
         // `J` units of `tb(a, b, c)`: the jerk is `+J` in phases I and VII, `−J` in III and V,
@@ -546,6 +554,7 @@ impl Profile {
         self.raise[0] = (a, c + b - 1);
         self.raises = 1;
         self.pending = Some(*groups);
+        self.doubles = self.limits.jerk >= 2;
     }
 
     /// Finds the pieces and fast cycles [`Self::set`] left for later, if it did: what
@@ -938,9 +947,9 @@ fn notch(start: i32, w: i32, k: i32) -> Notch {
 impl Profile {
     /// The notch pairs, one or two, that take `rest` off the main move and fit it
     /// ([`Self::fits`]), in the room `fits` found for it ([`Fits::fill`]); counts the candidates
-    /// checked in `checks`. With `apart`, only pairs whose impulses fall on distinct cycles
-    /// (each then has the room its interval gives it); else the ends of the start ranges, where
-    /// impulses may meet in room for both.
+    /// checked in `checks`. With `apart`, only pairs whose impulses are apart ([`first_apart`]:
+    /// each cycle's then has the room its interval gives it); else the ends of the start
+    /// ranges, where impulses of a sign may meet in room for both.
     fn take(&mut self, rest: u64, apart: bool, checks: &mut u32, fits: &Fits) -> Option<Placement> {
         if rest == 0 {
             return Some(Placement::default());
@@ -1012,10 +1021,15 @@ impl Profile {
                             let (from1, to1) = first.range(k1);
                             let (from2, to2) = second.range(k2);
                             let (starts, count) = if apart {
-                                // Starts whose impulses fall on distinct cycles: each has the
-                                // room its interval gives it.
-                                let found =
-                                    first_apart((from1, to1), (from2, to2), (w1, k1), (w2, k2));
+                                // Starts whose impulses are apart: each cycle's has the room
+                                // its interval gives it.
+                                let found = first_apart(
+                                    (from1, to1),
+                                    (from2, to2),
+                                    (w1, k1),
+                                    (w2, k2),
+                                    self.doubles,
+                                );
                                 let Some(found) = found else {
                                     continue;
                                 };
@@ -1059,43 +1073,60 @@ fn impulses_of((s, w, k): Pair) -> [(i32, i64); 4] {
 
 /// The first starts `(s₁, s₂)` — `s₁` from the first four of `from1 ..= to1`, then `s₂` from
 /// the first 21 of `from2 ..= to2` — that put two pairs of widths and spans `(w1, k1)` and
-/// `(w2, k2)` on distinct cycles, each impulse then with the room its interval gives it.
+/// `(w2, k2)` apart: no cycle with two impulses of one sign. Each cycle's impulses then have
+/// the room their intervals give them: a pair's four fall on four cycles (`w ≠ k`), so a cycle
+/// has one impulse, or one of each pair — of one sign (kept apart), or of opposite signs, which
+/// cancel and leave the main move's jerk. With `doubles` (the main move has room for two
+/// impulses of a sign wherever it has for one, [`Profile`]) the first starts of each: nothing
+/// needs keeping apart. (Impulses were once kept on distinct cycles, opposite signs too, and
+/// always: 30 of 80 main moves that failed over the costliest moves of a sample from fractional
+/// positions had pairs that took their rest, all kept apart by that.)
 ///
-/// The pairs meet exactly when `s₂ − s₁` is one of the 16 differences between an impulse of the
-/// first and one of the second, the same for every start: those within reach are marked once in
-/// a mask of differences, and each `s₁` reads its first free `s₂` off it. (A walk over the
-/// starts compared the 16 pairs of impulses for each: cheap when the first start is free, but
-/// hundreds of Cortex-M4 instructions where the starts are few and all taken, as in the
-/// shortest moves.)
+/// The pairs meet with one sign exactly when `s₂ − s₁` is one of the 8 differences between an
+/// impulse of the first and one of the second of the same sign, the same for every start: those
+/// within reach are marked once in a mask of differences, and each `s₁` reads its first free
+/// `s₂` off it. (A walk over the starts compared the pairs of impulses for each: cheap when the
+/// first start is free, but hundreds of Cortex-M4 instructions where the starts are few and all
+/// taken, as in the shortest moves.)
 fn first_apart(
     (from1, to1): Interval,
     (from2, to2): Interval,
     (w1, k1): (i32, i32),
     (w2, k2): (i32, i32),
+    doubles: bool,
 ) -> Option<(i32, i32)> {
     let (last1, last2) = (to1.min(from1 + 3), to2.min(from2 + 20));
     if from1 > last1 || from2 > last2 {
         return None;
     }
+    if doubles {
+        return Some((from1, from2));
+    }
     // One start each (most calls, in short moves: 28 of 30 for 438 raw units with a jerk of 1):
-    // the 16 differences compared with theirs, no mask (about 130 Cortex-M4 instructions a
-    // call with it).
+    // the 8 differences compared with theirs, no mask (about 130 Cortex-M4 instructions a call
+    // with it). A pair's lowering impulses are on `s` and `s + k + w`, its raising ones on
+    // `s + w` and `s + k`.
     if from1 == last1 && from2 == last2 {
         let apart = from2 - from1;
-        let meet = [0, w1, k1, k1 + w1]
+        let meet = [0, k1 + w1]
             .into_iter()
-            .any(|one| [0, w2, k2, k2 + w2].contains(&(one - apart)));
+            .any(|one| [0, k2 + w2].contains(&(one - apart)))
+            || [w1, k1]
+                .into_iter()
+                .any(|one| [w2, k2].contains(&(one - apart)));
         return (!meet).then_some((from1, from2));
     }
     // Differences `s₂ − s₁` from `from2 − last1` (bit 0) on: 24 of them cover every pair of
-    // starts looked at.
+    // starts looked at. Lowering impulses with lowering ones, raising with raising.
     let base = from2 - last1;
     let mut taken = 0u32;
-    for one in [0, w1, k1, k1 + w1] {
-        for other in [0, w2, k2, k2 + w2] {
-            let bit = one - other - base;
-            if (0..32).contains(&bit) {
-                taken |= 1 << bit;
+    for (ones, others) in [([0, k1 + w1], [0, k2 + w2]), ([w1, k1], [w2, k2])] {
+        for one in ones {
+            for other in others {
+                let bit = one - other - base;
+                if (0..32).contains(&bit) {
+                    taken |= 1 << bit;
+                }
             }
         }
     }
@@ -1191,19 +1222,20 @@ mod tests {
         moves
     }
 
-    /// Whether two pairs have their impulses on distinct cycles.
-    fn distinct(first: Pair, second: Pair) -> bool {
+    /// Whether two pairs have their impulses apart: no cycle with two of one sign.
+    fn apart(first: Pair, second: Pair) -> bool {
         let first = impulses_of(first);
         impulses_of(second)
             .iter()
-            .all(|(cycle, _)| first.iter().all(|(other, _)| other != cycle))
+            .all(|impulse| first.iter().all(|other| other != impulse))
     }
 
     proptest::proptest! {
         #![proptest_config(proptest::prelude::ProptestConfig::with_cases(20_000))]
 
         /// [`first_apart`]'s mask of differences finds the starts a walk over them, comparing
-        /// every pair of impulses, finds first (or none, as it does).
+        /// every pair of impulses, finds first (or none, as it does); with `doubles`, the first
+        /// starts of each.
         #[test]
         fn the_first_starts_apart_are_the_walks(
             from1 in 0i32..30, len1 in -2i32..8, from2 in 0i32..30, len2 in -2i32..30,
@@ -1212,12 +1244,17 @@ mod tests {
             let (to1, to2) = (from1 + len1, from2 + len2);
             let walked = (from1..=to1.min(from1 + 3)).find_map(|s1| {
                 (from2..=to2.min(from2 + 20))
-                    .find(|&s2| distinct((s1, w1, k1), (s2, w2, k2)))
+                    .find(|&s2| apart((s1, w1, k1), (s2, w2, k2)))
                     .map(|s2| (s1, s2))
             });
             proptest::prop_assert_eq!(
-                first_apart((from1, to1), (from2, to2), (w1, k1), (w2, k2)),
+                first_apart((from1, to1), (from2, to2), (w1, k1), (w2, k2), false),
                 walked
+            );
+            let first = (from1 <= to1 && from2 <= to2).then_some((from1, from2));
+            proptest::prop_assert_eq!(
+                first_apart((from1, to1), (from2, to2), (w1, k1), (w2, k2), true),
+                first
             );
         }
     }
@@ -1233,8 +1270,8 @@ mod tests {
                         (1..=3).flat_map(move |w2| (1..12).map(move |k2| (w1, k1, w2, k2)))
                     })
                 }) {
-                    let walked = distinct((s1, w1, k1), (s2, w2, k2)).then_some((s1, s2));
-                    let found = first_apart((s1, s1), (s2, s2), (w1, k1), (w2, k2));
+                    let walked = apart((s1, w1, k1), (s2, w2, k2)).then_some((s1, s2));
+                    let found = first_apart((s1, s1), (s2, s2), (w1, k1), (w2, k2), false);
                     assert_eq!(found, walked, "{:?}", (s1, s2, w1, k1, w2, k2));
                 }
             }
@@ -1335,6 +1372,51 @@ mod tests {
                 })
             })
         })
+    }
+
+    /// [`Profile`]'s `doubles` holds where it says: for every main move of up to 40 cycles with a
+    /// jerk of 1 to 3 raw units, with and without early units, wherever it is set the jerk has
+    /// room for two impulses of a sign on every cycle with room for one; and it is set for every
+    /// move of units all alike with a jerk of 2 or more.
+    #[test]
+    fn room_for_two_where_doubles_says() {
+        let mut with_early = 0;
+        for (jerk, [full, _], total) in units_all_alike(40) {
+            for early in 0..jerk {
+                if early > 0 && full.c == full.a + full.b {
+                    continue;
+                }
+                let groups = [
+                    Group {
+                        count: jerk - early,
+                        ..full
+                    },
+                    Group {
+                        count: early,
+                        c: full.c - 1,
+                        ..full
+                    },
+                ];
+                let mut profile = Profile::new(wide(jerk));
+                profile.set(&groups, total);
+                let doubles = profile.doubles;
+                profile.ready();
+                assert_eq!(doubles, early == 0 && jerk >= 2, "{groups:?}");
+                with_early += usize::from(early > 0);
+                let limit = jerk as i64;
+                for &(from, to) in profile.lower() {
+                    for n in from..=to {
+                        assert!(!doubles || profile.jerk_at(n) - 2 >= -limit);
+                    }
+                }
+                for &(from, to) in profile.raise() {
+                    for n in from..=to {
+                        assert!(!doubles || profile.jerk_at(n) + 2 <= limit);
+                    }
+                }
+            }
+        }
+        assert!(with_early > 1_000, "{with_early}");
     }
 
     /// For `J` units all alike (no early ones), [`Profile::set`]'s room in closed form is the
