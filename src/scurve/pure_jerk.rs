@@ -527,14 +527,14 @@ impl Profile {
         profile
     }
 
-    /// As `Profile::of` (the tests' constructor), in place — but for units all alike only the
-    /// room: most main moves tried that take no pairs fail before a candidate is checked, on
-    /// the room and the spans alone (every one of 748 that failed over four samples of moves
-    /// from fractional positions), so their pieces wait for a candidate to check
-    /// ([`Self::ready`]).
+    /// As `Profile::of` (the tests' constructor), in place — but only the room: most main moves
+    /// tried fail before a candidate is checked, on the room and the spans alone (every one of
+    /// 748 that failed over four samples of moves from fractional positions), so their pieces
+    /// wait for a candidate to check ([`Self::ready`]).
     fn set(&mut self, groups: &[Group; 2], total: u64) {
         let [full, early] = groups;
-        if early.count > 0 || full.count != self.limits.jerk {
+        if full.count + early.count != self.limits.jerk || full.a + full.b + full.c != total {
+            // Not a main move [`plan`] makes (the tests' own): the room from the pieces.
             self.set_pieces(groups, total);
             self.pending = None;
             self.doubles = false;
@@ -542,19 +542,30 @@ impl Profile {
         }
         // `J` units of `tb(a, b, c)`: the jerk is `+J` in phases I and VII, `−J` in III and V,
         // zero in II, IV and VI (phases of no cycles dropped): a lowering impulse has room
-        // but in III and V, a raising one from II to VI.
+        // but in III and V, a raising one from II to VI. Early units (`tb(a, b, c − 1)`, only
+        // with a cruise) share the ramps and start phases V to VII a cycle early: the jerk is
+        // above `−J` from the first cycle of the full units' phase V on (the early units are in
+        // VI there), so a lowering impulse has room from `c + a − 1`; below `J` on the last
+        // cycle, where the early units have ended, so a raising one has room there too. (The
+        // pieces cost about 650 Cortex-M4 instructions a main move with early units, most of
+        // which fail before a candidate is checked; a test and a debug assertion in
+        // [`Self::ready`] hold the two equal.)
         self.total = total;
         let (a, b, c, end) = (full.a as i32, full.b as i32, full.c as i32, total as i32);
+        let late = i32::from(early.count > 0);
         self.lowers = 0;
         push(&mut self.lower, &mut self.lowers, (0, b - 1));
         if c > a + b {
             push(&mut self.lower, &mut self.lowers, (a + b, c - 1));
         }
-        push(&mut self.lower, &mut self.lowers, (c + a, end - 1));
-        self.raise[0] = (a, c + b - 1);
-        self.raises = 1;
+        push(&mut self.lower, &mut self.lowers, (c + a - late, end - 1));
+        self.raises = 0;
+        push(&mut self.raise, &mut self.raises, (a, c + b - 1));
+        if late > 0 {
+            push(&mut self.raise, &mut self.raises, (end - 1, end - 1));
+        }
         self.pending = Some(*groups);
-        self.doubles = self.limits.jerk >= 2;
+        self.doubles = late == 0 && self.limits.jerk >= 2;
     }
 
     /// Finds the pieces and fast cycles [`Self::set`] left for later, if it did: what
@@ -1381,60 +1392,73 @@ mod tests {
     #[test]
     fn room_for_two_where_doubles_says() {
         let mut with_early = 0;
-        for (jerk, [full, _], total) in units_all_alike(40) {
-            for early in 0..jerk {
-                if early > 0 && full.c == full.a + full.b {
-                    continue;
+        for (jerk, groups, total) in with_early_units(40) {
+            let early = groups[1].count;
+            let mut profile = Profile::new(wide(jerk));
+            profile.set(&groups, total);
+            let doubles = profile.doubles;
+            profile.ready();
+            assert_eq!(doubles, early == 0 && jerk >= 2, "{groups:?}");
+            with_early += usize::from(early > 0);
+            let limit = jerk as i64;
+            for &(from, to) in profile.lower() {
+                for n in from..=to {
+                    assert!(!doubles || profile.jerk_at(n) - 2 >= -limit);
                 }
-                let groups = [
-                    Group {
-                        count: jerk - early,
-                        ..full
-                    },
-                    Group {
-                        count: early,
-                        c: full.c - 1,
-                        ..full
-                    },
-                ];
-                let mut profile = Profile::new(wide(jerk));
-                profile.set(&groups, total);
-                let doubles = profile.doubles;
-                profile.ready();
-                assert_eq!(doubles, early == 0 && jerk >= 2, "{groups:?}");
-                with_early += usize::from(early > 0);
-                let limit = jerk as i64;
-                for &(from, to) in profile.lower() {
-                    for n in from..=to {
-                        assert!(!doubles || profile.jerk_at(n) - 2 >= -limit);
-                    }
-                }
-                for &(from, to) in profile.raise() {
-                    for n in from..=to {
-                        assert!(!doubles || profile.jerk_at(n) + 2 <= limit);
-                    }
+            }
+            for &(from, to) in profile.raise() {
+                for n in from..=to {
+                    assert!(!doubles || profile.jerk_at(n) + 2 <= limit);
                 }
             }
         }
         assert!(with_early > 1_000, "{with_early}");
     }
 
-    /// For `J` units all alike (no early ones), [`Profile::set`]'s room in closed form is the
-    /// room the pieces give ([`Profile::ready`]): every such main move of up to 40 cycles with
-    /// a jerk of 1 to 3 raw units.
+    /// Every main move [`plan`] makes of 4 to `most` cycles with a jerk of 1 to 3 raw units:
+    /// `units_all_alike`, and with each count of early units they can have (`1 ..= J − 1`,
+    /// where there is a cruise).
+    fn with_early_units(most: u64) -> impl Iterator<Item = (u64, [Group; 2], u64)> {
+        units_all_alike(most).flat_map(|(jerk, [full, _], total)| {
+            (0..jerk)
+                .filter(move |&early| early == 0 || full.c > full.a + full.b)
+                .map(move |early| {
+                    let groups = [
+                        Group {
+                            count: jerk - early,
+                            ..full
+                        },
+                        Group {
+                            count: early,
+                            c: full.c - 1,
+                            ..full
+                        },
+                    ];
+                    (jerk, groups, total)
+                })
+        })
+    }
+
+    /// [`Profile::set`]'s room in closed form is the room the pieces give ([`Profile::ready`]):
+    /// every main move of up to 40 cycles with a jerk of 1 to 3 raw units, with early units and
+    /// without.
     #[test]
-    fn the_room_of_units_all_alike_is_the_pieces_room() {
-        let mut compared = 0;
-        for (jerk, groups, total) in units_all_alike(40) {
+    fn the_room_in_closed_form_is_the_pieces_room() {
+        let mut compared = [0; 2];
+        for (jerk, groups, total) in with_early_units(40) {
             let mut profile = Profile::new(wide(jerk));
             profile.set(&groups, total);
             assert!(profile.pending.is_some());
             let room = (profile.lower().to_vec(), profile.raise().to_vec());
             profile.ready();
-            assert_eq!(room, (profile.lower().to_vec(), profile.raise().to_vec()));
-            compared += 1;
+            assert_eq!(
+                room,
+                (profile.lower().to_vec(), profile.raise().to_vec()),
+                "{groups:?}"
+            );
+            compared[usize::from(groups[1].count > 0)] += 1;
         }
-        assert!(compared > 1_000, "{compared}");
+        assert!(compared[0] > 1_000 && compared[1] > 1_000, "{compared:?}");
     }
 
     /// The jerk by pieces, against the jerk summed cycle by cycle, and the velocity at least
