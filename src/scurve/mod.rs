@@ -43,18 +43,19 @@
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
 //! checked). Measured (see the README for the commands): 8,703 Cortex-M4 instructions median,
 //! 15,275 at worst over the first 1,000 random moves, 16,871 over 5,000, 17,148 over 20,000,
-//! 19,982 over 100,000 (a jerk of one raw unit, whose first shapes' remainders do not fit); on
+//! 19,985 over 100,000 (a jerk of one raw unit, whose first shapes' remainders do not fit); on
 //! the x86 development machine a few hundred nanoseconds median, under about 2 µs at worst.
 //! Tiny moves with a jerk of one or two raw units are read from a table of their fastest plans
 //! ([`tiny`]: no plan of fewer cycles exists); short moves where only a jerk of three raw units
 //! or more binds (mostly from fractional positions) are sums of unit volumes ([`volumes`]), and
-//! those with a jerk of up to three are planned by [`pure_jerk`] next; moves the shapes near the optimum cannot finish are
-//! planned by [`pure_jerk`] where only the jerk binds, else try up to 24 more pairs of ramps
-//! around it, then the same shapes with one unit's area more in the remainder, which costs more
-//! (of random moves from fractional positions with a jerk of 1 to 15 raw units, 19 of a sample
-//! of 20,000 take more than SPEC §16's 20,000, the worst 29,913, most of them moves of 25 to
-//! 160 cycles with a jerk of 1 to 3 raw units; CI's sample of 3,000 is within it, worst 19,999). A step is at
-//! most 33 Cortex-M4 instructions (36 on the cycles after an abrupt stop), 18 on x86.
+//! those with a jerk of up to 15 are planned by [`pure_jerk`] next; moves the shapes near the
+//! optimum cannot finish are planned by [`pure_jerk`] where only the jerk binds, else try up to
+//! 24 more pairs of ramps around it, then the same shapes with one unit's area more in the
+//! remainder, which costs more (of random moves from fractional positions with a jerk of 1 to
+//! 15 raw units, 1 of a sample of 20,000 takes more than SPEC §16's 20,000, 20,983: a jerk of 3
+//! raw units whose rest no two pairs of `pure_jerk` reach, planned by the search; CI's sample of
+//! 3,000 is within it, worst 16,366). A step is at most 33 Cortex-M4 instructions (36 on the
+//! cycles after an abrupt stop), 18 on x86.
 
 mod predict;
 mod pure_jerk;

@@ -22,11 +22,11 @@
 //! limits out of reach); the schedule is built once, for the plan found.
 //!
 //! The search calls it after its shapes, where their plan is more than three cycles over the
-//! optimum or missing ([`improve`]), or before them where the jerk is at most three raw units
-//! ([`first`], the pass with the pairs' impulses apart — no cycle with two of one sign, unless
-//! the main move has room for two wherever it has room for one — and for the shortest moves
-//! the other as well; [`improve`] makes the other if the search's plan then needs it).
-//! Where both passes run, each main move is tried with both, its room found once.
+//! optimum or missing ([`improve`]), or before them where the jerk is at most 15 raw units
+//! ([`FIRST_JERK`], [`first`]: the pass with the pairs' impulses apart — no cycle with two of
+//! one sign, unless the main move has room for two wherever it has room for one — and for the
+//! shortest moves the other as well; [`improve`] makes the other if the search's plan then
+//! needs it). Where both passes run, each main move is tried with both, its room found once.
 //!
 //! Its cost is bounded: at most [`COUNTS`] cycle counts, for each a few main moves per first ramp
 //! (the second ramps whose distance is just above the move's), at most [`MAX_CHECKS`] candidates
@@ -80,14 +80,21 @@ const MAX_CHECKS: u32 = 64;
 /// search ([`first`]): with a few units of jerk the search's shapes mostly leave remainders
 /// that its pairs, placed where O(1) inequalities keep the limits, cannot take — attempt after
 /// attempt, each a few thousand Cortex-M4 instructions — where pairs anywhere the jerk has
-/// room can (README, "Planning from fractional positions"). With more units the search's early
-/// units take most remainders. Measured on the Cortex-M4 probe over three samples of moves
-/// from fractional positions (seeds 17, 99 and 5: 3,000, 5,000 and 5,000 moves), moves over
-/// SPEC §16's 20,000: up to 2 units 64, 113, 131; up to 3 57, 109, 120 (worst unchanged);
-/// up to 4 55, 107, 115 but one tiny move, both of whose passes here fail before the search,
-/// 39,523 → 63,508; up to 5 60, 104, 111. (Up to 2 was the choice before [`reach`] and the
-/// corners written in order made a main move here cheaper.)
-const FIRST_JERK: u64 = 3;
+/// room can (README, "Planning from fractional positions"). 15, the most of the moves a stop
+/// leaves in that sample: with more units the rest a main move leaves is up to a unit's area
+/// (`a·b`), which the pairs' reach (`≈ 6·(N − 2a)`) seldom covers. It was 3 until main moves
+/// whose jerk has room for two impulses of a sign wherever it has for one ([`Profile`]'s
+/// `doubles`) stopped keeping their pairs' impulses apart and their fits came in closed form
+/// ([`Fits::fill`]); 3 → 15 then, on the Cortex-M4 probe over five samples of moves from
+/// fractional positions (seeds 17, 99, 5, 1234: 3,000 and 5,000 each; 2026: 20,000): over
+/// SPEC §16's 20,000 0, 0, 0, 0, 3 → 0, 0, 0, 0, 1, worst 18,207 / 18,008 / 18,201 / 17,875 /
+/// 24,663 → 16,366 / 17,526 / 16,179 / 16,403 / 20,983, p99 16,748 → 12,131 (CI's sample),
+/// sums −12 to −13 %; plans (`tools/ab_plans.sh`) 2,210 of 200,000 shorter, 1,018 longer
+/// (−1,379 cycles, all within `⌊∛(32·D/J)⌋ + 3` by construction); random moves unchanged
+/// (worst 19,985 over the first 100,000, a search move of a jerk of 1 raw unit). (Once 3: up
+/// to 4 had taken one tiny move, both of whose passes here failed before the search, 39,523
+/// → 63,508, before such moves were tabled, [`super::tiny`].)
+const FIRST_JERK: u64 = 15;
 
 /// Moves whose continuous optimum is under this many cycles (its floor) and whose jerk is at
 /// most [`FIRST_JERK`] are tried with both passes here, before the search ([`first`]), each

@@ -11,7 +11,7 @@
 //! the plan that wins. A last resort (two *fine units*, then ramps of one cycle) covers the few
 //! very short moves with a large jerk that notch pairs have no room in. Where only the jerk binds
 //! and the plan is more than three cycles over the optimum, or missing, [`super::pure_jerk`]
-//! places notch pairs wherever the jerk has room; with a jerk of up to three raw units it plans
+//! places notch pairs wherever the jerk has room; with a jerk of up to 15 raw units it plans
 //! such moves before the shapes are tried. Before the ramps of one cycle, the ramps around
 //! the optimum ([`around`]), then the same shapes once more with the pairs' widths estimated for
 //! the remainder plus one unit's area ([`Move::with_unit`]), which closes the gaps between what
@@ -295,7 +295,7 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
         // short moves with a jerk of 3 raw units or more as a sum of unit volumes
         // ([`volumes`]): the shapes mostly leave them remainders their pairs have no room for;
             || volumes::plan(distance, direction, limits, out)
-        // with a jerk of up to three raw units, notch pairs anywhere the jerk has room
+        // with a jerk of up to 15 raw units, notch pairs anywhere the jerk has room
         // ([`pure_jerk`]): the shapes mostly leave it remainders it cannot place.
             || pure_jerk::first(distance, direction, limits, out))
     {
