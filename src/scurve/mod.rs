@@ -51,11 +51,11 @@
 //! those with a jerk of up to 15 are planned by [`pure_jerk`] next; moves the shapes near the
 //! optimum cannot finish are planned by [`pure_jerk`] where only the jerk binds, else try up to
 //! 24 more pairs of ramps around it, then the same shapes with one unit's area more in the
-//! remainder, which costs more (of random moves from fractional positions with a jerk of 1 to
-//! 15 raw units, 1 of a sample of 20,000 takes more than SPEC §16's 20,000, 20,983: a jerk of 3
-//! raw units whose rest no two pairs of `pure_jerk` reach, planned by the search; CI's sample of
-//! 3,000 is within it, worst 16,366). A step is at most 33 Cortex-M4 instructions (36 on the
-//! cycles after an abrupt stop), 18 on x86.
+//! remainder, which costs more (random moves from fractional positions with a jerk of 1 to 15
+//! raw units: a sample of 20,000 within SPEC §16's 20,000, worst 19,709, a jerk of 3 raw units
+//! whose rest no two pairs of `pure_jerk` reach, planned by the search; CI's sample of 3,000
+//! worst 16,369). A step is at most 33 Cortex-M4 instructions (36 on the cycles after an abrupt
+//! stop), 18 on x86.
 
 mod predict;
 mod pure_jerk;

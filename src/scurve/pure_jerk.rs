@@ -37,7 +37,8 @@ use super::roots::cube_root;
 use super::schedule::{Limits64, Schedule};
 use super::shape::{Group, MainMove};
 use crate::bisect::last_true;
-use crate::division::{div, div_ceil};
+use crate::division::div;
+use num_traits::PrimInt;
 
 /// Moves whose continuous optimum is under this many cycles are tried here: the cost of a try
 /// grows with the square of the length, and longer moves have room for the search's own pairs.
@@ -266,10 +267,10 @@ fn optimum_floor(scaled: u64, distance: u64, limits: Limits64) -> Option<u64> {
 
 /// The first plan found, fewest cycles first, with a cycle count in `counts`, into `out`: for
 /// each main move, its pairs placed as each of `passes` has them (`true`: their impulses
-/// apart, [`first_apart`]; `false`: at the ends of their ranges), each pass with its own [`MAX_CHECKS`]. (The passes
-/// once ran one after the other over every main move: a main move both tried had its room
-/// found twice, and a plan the first pass found on a later cycle count was kept over one the
-/// second would have found on an earlier one.)
+/// apart, [`first_apart`]; `false`: at the ends of their ranges), each pass with its own
+/// [`MAX_CHECKS`]. (The passes once ran one after the other over every main move: a main move
+/// both tried had its room found twice, and a plan the first pass found on a later cycle count
+/// was kept over one the second would have found on an earlier one.)
 fn plan(
     distance: u64,
     direction: i64,
@@ -278,104 +279,211 @@ fn plan(
     passes: &[bool],
     out: &mut Schedule,
 ) -> bool {
-    let jerk = limits.jerk;
-    let mut checks = [0u32; 2];
-    // One profile and one table of fits, rewritten for each main move tried: a few hundred
-    // bytes each, which a fresh pair per main move cleared and copied (about an instruction a
-    // byte on a Cortex-M4).
-    let mut profile = Profile::new(limits);
-    let mut fits = Fits::EMPTY;
+    // In 32 bits where every product of the search for main moves fits (`J·a·b·c ≤ J·N³/27`,
+    // `D < 2^32`): a 64-bit product or quotient is several Cortex-M4 instructions, and this
+    // search is a large part of a plan's cost where its main moves fail (95,747 raw units with a
+    // jerk of 3, four cycle counts of nine first ramps each, one main move tried: 20,983 →
+    // 19,709 instructions in all, the last of a sample of 20,000 moves from fractional positions
+    // over SPEC §16's 20,000). The 64-bit search is for the jerks of hundreds of raw units or
+    // more that [`improve`] plans.
+    let most = *counts.end();
+    let narrow = u32::try_from(distance).is_ok()
+        && most
+            .checked_mul(most * most)
+            .and_then(|cube| cube.checked_mul(limits.jerk))
+            .is_some_and(|product| product <= u64::from(u32::MAX));
+    let mut tries = Tries {
+        distance,
+        direction,
+        limits,
+        passes,
+        checks: [0; 2],
+        profile: Profile::new(limits),
+        fits: Fits::EMPTY,
+        out,
+    };
+    if narrow {
+        plan_in::<u32>(&mut tries, counts)
+    } else {
+        plan_in::<u64>(&mut tries, counts)
+    }
+}
+
+/// [`plan`] with the search for main moves in `W`: each main move whose rest the pairs may take
+/// is handed to [`Tries::main_move`] (one function for both widths: most main moves of a first
+/// ramp are passed by here, and this search is the part that takes the width).
+fn plan_in<W: Word>(tries: &mut Tries, counts: core::ops::RangeInclusive<u64>) -> bool {
+    let (distance, jerk) = (tries.distance, tries.limits.jerk);
+    let (distance_w, jerk_w) = (W::of(distance), W::of(jerk));
+    let (one, two) = (W::one(), W::of(2));
     for total in counts {
         // Every first ramp from the first that covers the distance on: the later ones cover more.
         for a in first_ramp(distance, jerk, total)..=total / 4 {
             let reach = reach(total, a);
+            let (total_w, a_w, reach_w) = (W::of(total), W::of(a), W::of(reach));
             // a·b·(s − b)·J ≥ D with s = N − a: b(s − b) ≥ ⌈D/(J·a)⌉ from the root's floor up.
-            let s = total - a;
-            let need = div_ceil(distance, jerk * a);
-            let Some(square) = (s * s).checked_sub(4 * need) else {
+            let s = total_w - a_w;
+            let per_unit = jerk_w * a_w;
+            let need = distance_w / per_unit
+                + if distance_w % per_unit == W::zero() {
+                    W::zero()
+                } else {
+                    one
+                };
+            // `4·need ≤ s² + 4` for the first ramps [`first_ramp`] lets through
+            // (`J·a·(s/2)² ≥ D`); s < 2^10 (the moves here are under `LONGEST + COUNTS`
+            // cycles), so the square is under 2^20.
+            let Some(square) = (s * s).checked_sub(&(W::of(4) * need)) else {
                 continue;
             };
-            // s < 2^10 (the moves here are under `LONGEST + COUNTS` cycles), so the square and
-            // its root fit 32 bits: the library's 32-bit root, a fraction of the 64-bit one's
-            // cost on a 32-bit core.
-            let root = u64::from(u32::try_from(square).map_or(u32::MAX, u32::isqrt));
-            let mut b = ((s - root) / 2).max(a);
-            while b * (s - b) < need {
-                b += 1;
+            let mut b_w = ((s - square.root()) / two).max(a_w);
+            while b_w * (s - b_w) < need {
+                b_w = b_w + one;
             }
             // c = N − a − b ≥ a + b.
-            while 2 * (a + b) <= total {
-                let c = total - a - b;
-                let (full, area) = (jerk * a * b * c, a * b);
-                // Units whose cruise ends a cycle early take whole areas; e ≤ J − 1 keeps one
-                // unit whole (and only a move with a cruise has a cycle to give).
-                let early = if c > a + b {
-                    div(full - distance, area).min(jerk - 1)
-                } else {
-                    0
-                };
-                let rest = full - early * area - distance;
+            while two * (a_w + b_w) <= total_w {
+                let c_w = total_w - a_w - b_w;
+                let (full, area) = (jerk_w * a_w * b_w * c_w, a_w * b_w);
                 // `full − D − (J − 1)·a·b` grows with b (a·b·(J·(c − 1) + 1) does while
                 // 2b < N − a), and no later b leaves less than it.
-                if full - distance > (jerk - 1) * area + reach {
+                if full - distance_w > (jerk_w - one) * area + reach_w {
                     break;
                 }
-                // A rest near the reach needs pairs at their widest spans, where the room is
-                // scarcest ([`NEAR_REACH`]); a small rest, pairs of small spans, which units all
-                // alike may have no room for ([`small_rest_may_fit`]).
-                if NEAR_REACH.1 * rest < NEAR_REACH.0 * reach
-                    && (early > 0 || small_rest_may_fit(rest, a, b, c))
-                {
-                    let groups = [
-                        Group {
-                            count: jerk - early,
-                            a,
-                            b,
-                            c,
-                        },
-                        Group {
-                            count: early,
-                            a,
-                            b,
-                            c: c - 1,
-                        },
-                    ];
-                    profile.set(&groups, total);
-                    if rest > 0 {
-                        fits.fill(&profile);
-                    }
-                    let placement = passes.iter().find_map(|&apart| {
-                        let checks = &mut checks[usize::from(apart)];
-                        (*checks < MAX_CHECKS)
-                            .then(|| profile.take(rest, apart, checks, &fits))
-                            .flatten()
-                    });
-                    if let Some(placement) = placement {
-                        // The main move only for the plan found (most candidates fail): a
-                        // [`MainMove`] is a few hundred bytes to clear and fill.
-                        let main = MainMove::of_groups(&groups);
-                        let built = out.build(&main, &placement, direction, (a, b));
-                        // Checked cycle by cycle by `Profile::fits`; the tests run with debug
-                        // assertions, and every plan made here is replayed as well.
-                        debug_assert!(
-                            out.lands(direction, limits, distance),
-                            "a plan that breaks a limit or misses the distance: {:?}",
-                            (&main, &placement, distance, limits)
-                        );
-                        return built;
-                    }
-                    if passes
-                        .iter()
-                        .all(|&apart| checks[usize::from(apart)] >= MAX_CHECKS)
-                    {
-                        return false;
-                    }
+                // Units whose cruise ends a cycle early take whole areas; e ≤ J − 1 keeps one
+                // unit whole (and only a move with a cruise has a cycle to give).
+                let early = if c_w > a_w + b_w {
+                    ((full - distance_w) / area).min(jerk_w - one)
+                } else {
+                    W::zero()
+                };
+                let rest = (full - early * area - distance_w).wide();
+                let (b, c, early) = (b_w.wide(), c_w.wide(), early.wide());
+                if let Some(planned) = tries.main_move(total, (a, b, c), early, (rest, reach)) {
+                    return planned;
                 }
-                b += 1;
+                b_w = b_w + one;
             }
         }
     }
     false
+}
+
+/// What [`plan`] carries from one main move tried to the next: the move, where its plan goes,
+/// the candidates checked so far, and one profile and one table of fits, rewritten for each
+/// main move tried (a few hundred bytes each, which a fresh pair per main move cleared and
+/// copied: about an instruction a byte on a Cortex-M4).
+struct Tries<'s> {
+    distance: u64,
+    direction: i64,
+    limits: Limits64,
+    passes: &'s [bool],
+    checks: [u32; 2],
+    profile: Profile,
+    fits: Fits,
+    out: &'s mut Schedule,
+}
+
+impl Tries<'_> {
+    /// Tries `J − e` units of `tb(a, b, c)` and `e` of `tb(a, b, c − 1)`, `total` cycles, `rest`
+    /// over the distance, the pairs' `reach` ([`reach`]): `Some(planned)` where the search ends
+    /// (a plan built into `out`, or the candidates to check used up), `None` to go on.
+    fn main_move(
+        &mut self,
+        total: u64,
+        (a, b, c): (u64, u64, u64),
+        early: u64,
+        (rest, reach): (u64, u64),
+    ) -> Option<bool> {
+        // A rest near the reach needs pairs at their widest spans, where the room is
+        // scarcest ([`NEAR_REACH`]); a small rest, pairs of small spans, which units all
+        // alike may have no room for ([`small_rest_may_fit`]).
+        if NEAR_REACH.1 * rest < NEAR_REACH.0 * reach
+            && (early > 0 || small_rest_may_fit(rest, a, b, c))
+        {
+            let groups = [
+                Group {
+                    count: self.limits.jerk - early,
+                    a,
+                    b,
+                    c,
+                },
+                Group {
+                    count: early,
+                    a,
+                    b,
+                    c: c - 1,
+                },
+            ];
+            self.profile.set(&groups, total);
+            if rest > 0 {
+                self.fits.fill(&self.profile);
+            }
+            let placement = self.passes.iter().find_map(|&apart| {
+                let checks = &mut self.checks[usize::from(apart)];
+                (*checks < MAX_CHECKS)
+                    .then(|| self.profile.take(rest, apart, checks, &self.fits))
+                    .flatten()
+            });
+            if let Some(placement) = placement {
+                // The main move only for the plan found (most candidates fail): a
+                // [`MainMove`] is a few hundred bytes to clear and fill.
+                let main = MainMove::of_groups(&groups);
+                let built = self.out.build(&main, &placement, self.direction, (a, b));
+                // Checked cycle by cycle by `Profile::fits`; the tests run with debug
+                // assertions, and every plan made here is replayed as well.
+                debug_assert!(
+                    self.out.lands(self.direction, self.limits, self.distance),
+                    "a plan that breaks a limit or misses the distance: {:?}",
+                    (&main, &placement, self.distance, self.limits)
+                );
+                return Some(built);
+            }
+            if self
+                .passes
+                .iter()
+                .all(|&apart| self.checks[usize::from(apart)] >= MAX_CHECKS)
+            {
+                return Some(false);
+            }
+        }
+        None
+    }
+}
+
+/// The integers [`plan_in`] searches for main moves in: `u32` where its products fit
+/// ([`plan`]), else `u64`.
+trait Word: PrimInt {
+    /// `value`, which the caller knows fits.
+    fn of(value: u64) -> Self;
+    /// As `u64`.
+    fn wide(self) -> u64;
+    /// `⌊√self⌋` of a value under 2^32.
+    fn root(self) -> Self;
+}
+
+impl Word for u32 {
+    fn of(value: u64) -> Self {
+        value as u32
+    }
+    fn wide(self) -> u64 {
+        u64::from(self)
+    }
+    fn root(self) -> Self {
+        self.isqrt()
+    }
+}
+
+impl Word for u64 {
+    fn of(value: u64) -> Self {
+        value
+    }
+    fn wide(self) -> u64 {
+        self
+    }
+    fn root(self) -> Self {
+        // The library's 32-bit root, a fraction of the 64-bit one's cost on a 32-bit core.
+        u64::from(u32::try_from(self).map_or(u32::MAX, u32::isqrt))
+    }
 }
 
 /// What two notch pairs can take at most off a main move of `total` cycles whose ramps are `a`
