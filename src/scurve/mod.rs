@@ -41,8 +41,8 @@
 //! Planning takes a bounded number of integer operations, the same on every target (no floating
 //! point): at most eight shapes, each solved in closed form, a fixed number of notch-pair
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
-//! checked). Measured (see the README for the commands): 8,703 Cortex-M4 instructions median,
-//! 15,275 at worst over the first 1,000 random moves, 16,871 over 5,000, 17,148 over 20,000,
+//! checked). Measured (see the README for the commands): 8,688 Cortex-M4 instructions median,
+//! 15,268 at worst over the first 1,000 random moves, 16,836 over 5,000, 17,123 over 20,000,
 //! 19,985 over 100,000 (a jerk of one raw unit, whose first shapes' remainders do not fit); on
 //! the x86 development machine a few hundred nanoseconds median, under about 2 µs at worst.
 //! Tiny moves with a jerk of one or two raw units are read from a table of their fastest plans
