@@ -37,7 +37,7 @@ use super::roots::cube_root;
 use super::schedule::{Limits64, Schedule};
 use super::shape::{Group, MainMove};
 use crate::bisect::last_true;
-use crate::division::div;
+use crate::division::{div, div_ceil};
 use num_traits::PrimInt;
 
 /// Moves whose continuous optimum is under this many cycles are tried here: the cost of a try
@@ -323,13 +323,7 @@ fn plan_in<W: Word>(tries: &mut Tries, counts: core::ops::RangeInclusive<u64>) -
             let (total_w, a_w, reach_w) = (W::of(total), W::of(a), W::of(reach));
             // a·b·(s − b)·J ≥ D with s = N − a: b(s − b) ≥ ⌈D/(J·a)⌉ from the root's floor up.
             let s = total_w - a_w;
-            let per_unit = jerk_w * a_w;
-            let need = distance_w / per_unit
-                + if distance_w % per_unit == W::zero() {
-                    W::zero()
-                } else {
-                    one
-                };
+            let need = distance_w.quotient_up(jerk_w * a_w);
             // `4·need ≤ s² + 4` for the first ramps [`first_ramp`] lets through
             // (`J·a·(s/2)² ≥ D`); s < 2^10 (the moves here are under `LONGEST + COUNTS`
             // cycles), so the square is under 2^20.
@@ -352,7 +346,7 @@ fn plan_in<W: Word>(tries: &mut Tries, counts: core::ops::RangeInclusive<u64>) -
                 // Units whose cruise ends a cycle early take whole areas; e ≤ J − 1 keeps one
                 // unit whole (and only a move with a cruise has a cycle to give).
                 let early = if c_w > a_w + b_w {
-                    ((full - distance_w) / area).min(jerk_w - one)
+                    (full - distance_w).quotient(area).min(jerk_w - one)
                 } else {
                     W::zero()
                 };
@@ -459,6 +453,10 @@ trait Word: PrimInt {
     fn wide(self) -> u64;
     /// `⌊√self⌋` of a value under 2^32.
     fn root(self) -> Self;
+    /// `⌊self / divisor⌋`.
+    fn quotient(self, divisor: Self) -> Self;
+    /// `⌈self / divisor⌉`.
+    fn quotient_up(self, divisor: Self) -> Self;
 }
 
 impl Word for u32 {
@@ -470,6 +468,12 @@ impl Word for u32 {
     }
     fn root(self) -> Self {
         self.isqrt()
+    }
+    fn quotient(self, divisor: Self) -> Self {
+        self / divisor
+    }
+    fn quotient_up(self, divisor: Self) -> Self {
+        self.div_ceil(divisor)
     }
 }
 
@@ -483,6 +487,13 @@ impl Word for u64 {
     fn root(self) -> Self {
         // The library's 32-bit root, a fraction of the 64-bit one's cost on a 32-bit core.
         u64::from(u32::try_from(self).map_or(u32::MAX, u32::isqrt))
+    }
+    // The crate's divisions, which take the 32-bit instruction where the operands fit.
+    fn quotient(self, divisor: Self) -> Self {
+        div(self, divisor)
+    }
+    fn quotient_up(self, divisor: Self) -> Self {
+        div_ceil(self, divisor)
     }
 }
 
