@@ -972,6 +972,21 @@ struct Fit {
 }
 
 impl Fit {
+    /// The fit of a pair of width `w` with its starts in `starts` and its raises in `raises`,
+    /// its reach found, if it has spans at all.
+    fn of(starts: Interval, raises: Interval, w: i32) -> Option<Self> {
+        let fit = Self {
+            starts,
+            raises,
+            reach: (0, 0),
+        };
+        let (lo, hi) = fit.spans();
+        (lo <= hi).then_some(Self {
+            reach: (w * lo, w * hi),
+            ..fit
+        })
+    }
+
     /// The spans the pair can take (not the width itself: see [`notch`]).
     fn spans(&self) -> Interval {
         (
@@ -1067,19 +1082,14 @@ impl Fits {
             let (mut len, mut reach) = (0, (i32::MAX, i32::MIN));
             let width_fits = &mut self.fits[i];
             let mut add = |starts: Interval, raises: Interval| {
-                let fit = Fit {
-                    starts,
-                    raises,
-                    reach: (0, 0),
-                };
-                let (lo, hi) = fit.spans();
-                if starts.0 <= starts.1 && raises.0 <= raises.1 && lo <= hi {
-                    width_fits[len] = Fit {
-                        reach: (w * lo, w * hi),
-                        ..fit
-                    };
+                // `fill_from_room` keeps only intervals that are not empty.
+                let kept = (starts.0 <= starts.1 && raises.0 <= raises.1)
+                    .then(|| Fit::of(starts, raises, w))
+                    .flatten();
+                if let Some(fit) = kept {
+                    width_fits[len] = fit;
                     len += 1;
-                    reach = (reach.0.min(w * lo), reach.1.max(w * hi));
+                    reach = (reach.0.min(fit.reach.0), reach.1.max(fit.reach.1));
                 }
             };
             add(s1, u1);
@@ -1129,14 +1139,7 @@ impl Fits {
                     if len == MAX_FITS {
                         break 'pairs;
                     }
-                    let mut fit = Fit {
-                        starts,
-                        raises,
-                        reach: (0, 0),
-                    };
-                    let (lo, hi) = fit.spans();
-                    if lo <= hi {
-                        fit.reach = (w * lo, w * hi);
+                    if let Some(fit) = Fit::of(starts, raises, w) {
                         width_fits[len] = fit;
                         len += 1;
                         reach = (reach.0.min(fit.reach.0), reach.1.max(fit.reach.1));
@@ -1648,10 +1651,10 @@ mod tests {
             let doubles = profile.doubles;
             profile.ready();
             let limit = jerk as i64;
-            let lowering = profile.lower().iter().flat_map(|&(from, to)| from..=to);
-            let raising = profile.raise().iter().flat_map(|&(from, to)| from..=to);
-            let room_for_two = lowering.clone().all(|n| profile.jerk_at(n) - 2 >= -limit)
-                && raising.clone().all(|n| profile.jerk_at(n) + 2 <= limit);
+            let mut lowering = profile.lower().iter().flat_map(|&(from, to)| from..=to);
+            let mut raising = profile.raise().iter().flat_map(|&(from, to)| from..=to);
+            let room_for_two = lowering.all(|n| profile.jerk_at(n) - 2 >= -limit)
+                && raising.all(|n| profile.jerk_at(n) + 2 <= limit);
             assert!(!doubles || room_for_two, "{groups:?}");
             if jerk >= 2 {
                 assert_eq!(doubles, room_for_two, "{groups:?}");
