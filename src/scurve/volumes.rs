@@ -69,6 +69,45 @@ const fn unit_ramps(unit: u16) -> (u64, u64) {
 /// when there is none, `N < 4`).
 static LARGEST: [u16; MOST_CYCLES as usize + 1] = largest();
 
+/// How many volumes a unit of at most [`MOST_CYCLES`] cycles covers (481 of the table's 2,001).
+const LISTED_LEN: usize = listed_len();
+
+/// Those volumes, ascending, and (at the same place in [`LISTED_CYCLES`]) the fewest cycles of a
+/// unit covering each: the volumes of a cycle count are walked down these, not down every
+/// index of [`UNITS`] (about four in five hold no volume; near the largest volumes of the
+/// moves here, where the two-volume sums are looked for, five in six).
+static LISTED: [u16; LISTED_LEN] = listed().0;
+
+/// The cycles of each of [`LISTED`]'s volumes.
+static LISTED_CYCLES: [u8; LISTED_LEN] = listed().1;
+
+const fn listed_len() -> usize {
+    let table = units();
+    let (mut len, mut volume) = (0, 1);
+    while volume < VOLUMES {
+        if table[volume] != NONE {
+            len += 1;
+        }
+        volume += 1;
+    }
+    len
+}
+
+const fn listed() -> ([u16; LISTED_LEN], [u8; LISTED_LEN]) {
+    let table = units();
+    let (mut volumes, mut cycles) = ([0; LISTED_LEN], [0; LISTED_LEN]);
+    let (mut len, mut volume) = (0, 1);
+    while volume < VOLUMES {
+        if table[volume] != NONE {
+            volumes[len] = volume as u16;
+            cycles[len] = unit_cycles(table[volume]) as u8;
+            len += 1;
+        }
+        volume += 1;
+    }
+    (volumes, cycles)
+}
+
 const fn units() -> [u16; VOLUMES] {
     let mut table = [NONE; VOLUMES];
     let most = MOST_CYCLES as usize;
@@ -112,8 +151,9 @@ const fn largest() -> [u16; MOST_CYCLES as usize + 1] {
 /// (three levels of [`sum_of_volumes`] and its pair). Measured: four at most.
 const MAX_GROUPS: usize = 5;
 
-/// Table reads at most per move, over its cycle counts: the cost stays bounded whatever the
-/// move (measured: 736 at most over 200,000 moves).
+/// Table reads at most per move, over its cycle counts, counted as reading [`UNITS`] one index
+/// at a time (the walks down [`LISTED`] count so too): the cost stays bounded whatever the
+/// move (measured: 736 at most over 200,000 moves with a sum).
 const MAX_READS: u32 = 1_024;
 
 /// The volumes of one cycle count, and the reads spent so far.
@@ -153,28 +193,78 @@ impl Volumes {
         self.scan_down(volume)
     }
 
-    /// [`Self::largest_up_to`] past its first reads, from `volume` down: in one pass down a
-    /// slice, without a bounds check or a budget test per volume, about half the Cortex-M4
-    /// instructions a read (a move with no sum spends every read: 9,661 instructions in reads
-    /// for 2,391 raw units with a jerk of 3 one at a time). Kept out of line: inlined, its
-    /// set-up made the first reads' loop dearer on most moves.
+    /// [`Self::largest_up_to`] past its first reads, from `volume` down: down [`LISTED`]'s
+    /// volumes (a binary search for the place to start), not down every index. The reads
+    /// counted are those of reading one index at a time, so that the budget, and the plans,
+    /// are what they were measured with; the cost is a fifth to a sixth of theirs. Kept out of
+    /// line: inlined, its set-up made the first reads' loop dearer on most moves.
     #[inline(never)]
     fn scan_down(&mut self, volume: usize) -> u64 {
-        let cycles = self.cycles;
         let left = MAX_READS.saturating_sub(self.reads) as usize;
-        let bottom = (volume.saturating_sub(left) + 1).min(volume + 1);
-        let looked = UNITS[bottom..=volume]
-            .iter()
-            .rev()
-            .position(|&unit| u64::from(unit_cycles(unit)) <= cycles);
-        match looked {
-            Some(below) => {
-                self.reads += below as u32 + 1;
-                (volume - below) as u64
+        // One at a time, this read `volume` down to the one found, none past the reads left
+        // (nor 0): the same reads are counted, the indices between looked at not at all.
+        let below = LISTED.partition_point(|&listed| usize::from(listed) <= volume);
+        match self.next_below(below) {
+            Some(place) if volume - usize::from(LISTED[place]) < left => {
+                let found = usize::from(LISTED[place]);
+                self.reads += (volume - found + 1) as u32;
+                found as u64
             }
-            None => {
-                self.reads += (volume + 1 - bottom) as u32;
+            _ => {
+                self.reads += left.min(volume) as u32;
                 0
+            }
+        }
+    }
+
+    /// The place in [`LISTED`] of the largest volume of at most `self.cycles` cycles below place
+    /// `place`, if any.
+    fn next_below(&self, place: usize) -> Option<usize> {
+        let cycles = self.cycles;
+        LISTED_CYCLES[..place]
+            .iter()
+            .rposition(|&fewest| u64::from(fewest) <= cycles)
+    }
+
+    /// The first volume `first`, from `top` (a volume of at most `self.cycles` cycles, at least
+    /// `rest/2` and under `rest`) down, such that `rest − first` is a volume too, both of at
+    /// most `self.cycles` cycles — `None` once the volumes left are under `rest/2` or the reads
+    /// are spent: the last two units of a sum. The reads counted are those of walking down with
+    /// [`Self::largest_up_to`] and testing each `rest − first` with [`Self::holds`], as
+    /// [`sum_of_volumes`] once did, so the plans are the same; the walk is down [`LISTED`], one
+    /// place after another. A move with no sum spends every read here: 5,119 raw units with a
+    /// jerk of 4, 15,590 Cortex-M4 instructions in this module one index at a time (about 200
+    /// a volume walked past, in calls), 3,647 so (24,542 → 12,346 in all).
+    fn pair_from(&mut self, top: u64, rest: u64) -> Option<u64> {
+        let cycles = self.cycles;
+        let (mut first, rest) = (top as usize, rest as usize);
+        // `top` is a volume (of at most `cycles` cycles): listed.
+        let mut place = LISTED.partition_point(|&listed| usize::from(listed) < first);
+        loop {
+            // `Self::holds(rest − first)`.
+            self.reads += 1;
+            if UNITS
+                .get(rest - first)
+                .is_some_and(|&unit| u64::from(unit_cycles(unit)) <= cycles)
+            {
+                return Some(first as u64);
+            }
+            // `Self::largest_up_to(first − 1)`: a read for each of `first − 1` down to the
+            // volume found, none past the reads left (nor 0).
+            let left = MAX_READS.saturating_sub(self.reads) as usize;
+            match self.next_below(place) {
+                Some(next) if first - usize::from(LISTED[next]) <= left => {
+                    let found = usize::from(LISTED[next]);
+                    self.reads += (first - found) as u32;
+                    (first, place) = (found, next);
+                }
+                _ => {
+                    self.reads += left.min(first - 1) as u32;
+                    return None;
+                }
+            }
+            if 2 * first < rest || self.reads >= MAX_READS {
+                return None;
             }
         }
     }
@@ -229,14 +319,15 @@ fn sum_of_volumes(rest: u64, units: u64, volumes: &mut Volumes, sum: &mut Sum) -
     // share, `rest/units`.
     while first > 0 && (units - 1) * first >= rest - first && volumes.reads < MAX_READS {
         if units == 2 {
-            if volumes.holds(rest - first) {
-                let placed = sum.len;
-                if sum.push(1, first) && sum.push(1, rest - first) {
-                    return true;
-                }
-                sum.len = placed;
+            let Some(first) = volumes.pair_from(first, rest) else {
                 return false;
+            };
+            let placed = sum.len;
+            if sum.push(1, first) && sum.push(1, rest - first) {
+                return true;
             }
+            sum.len = placed;
+            return false;
         } else {
             let placed = sum.len;
             if sum.push(1, first) && sum_of_volumes(rest - first, units - 1, volumes, sum) {
@@ -463,6 +554,79 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// `largest_up_to` read one index at a time, the reads counted as the module counts them.
+    fn largest_one_at_a_time(most: u64, cycles: u64, largest: u64, reads: &mut u32) -> u64 {
+        let mut volume = most.min(largest);
+        loop {
+            if volume == 0 || *reads >= MAX_READS {
+                return 0;
+            }
+            *reads += 1;
+            if u64::from(unit_cycles(UNITS[volume as usize])) <= cycles {
+                return volume;
+            }
+            volume -= 1;
+        }
+    }
+
+    /// The walk of `pair_from` finds the pair, and counts the reads, that walking down one index
+    /// at a time and testing each `rest − first` finds (the loop `sum_of_volumes` once had for
+    /// its last two units): every cycle count, rests across the table and past it, reads
+    /// left from plenty to none.
+    #[test]
+    fn pairs_are_found_as_one_at_a_time() {
+        let mut walked = 0;
+        for cycles in 4..=MOST_CYCLES {
+            let largest = u64::from(LARGEST[cycles as usize]);
+            let holds = |volume: u64| {
+                UNITS
+                    .get(volume as usize)
+                    .is_some_and(|&unit| u64::from(unit_cycles(unit)) <= cycles)
+            };
+            // Every rest up to 64 (walks that reach the least volume), then every fifth; the
+            // reads spent: none, half, and each of the last 48 (walks the budget cuts short
+            // on every side of a volume found).
+            let rests = (2..64).chain((64..2 * VOLUMES as u64).step_by(5));
+            let spent = [0, MAX_READS / 2]
+                .into_iter()
+                .chain(MAX_READS - 48..MAX_READS);
+            for rest in rests.filter(|&rest| !holds(rest)) {
+                for spent in spent.clone() {
+                    let mut reads = spent;
+                    let top = largest_one_at_a_time(rest, cycles, largest, &mut reads);
+                    // As `sum_of_volumes` enters it.
+                    if top == 0 || 2 * top < rest || reads >= MAX_READS {
+                        continue;
+                    }
+                    let mut volumes = Volumes {
+                        cycles,
+                        largest,
+                        reads,
+                    };
+                    let mut first = top;
+                    let expected = loop {
+                        reads += 1;
+                        if holds(rest - first) {
+                            break Some(first);
+                        }
+                        first = largest_one_at_a_time(first - 1, cycles, largest, &mut reads);
+                        if first == 0 || 2 * first < rest || reads >= MAX_READS {
+                            break None;
+                        }
+                    };
+                    walked += 1;
+                    let found = volumes.pair_from(top, rest);
+                    assert_eq!(
+                        (found, volumes.reads),
+                        (expected, reads),
+                        "{cycles} cycles, rest {rest}, {spent} reads spent"
+                    );
+                }
+            }
+        }
+        assert!(walked > 10_000, "{walked}");
     }
 
     proptest! {
