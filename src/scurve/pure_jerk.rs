@@ -1217,8 +1217,12 @@ impl Profile {
         };
         for w1 in 1..=WIDEST as i32 {
             for w2 in w1..=WIDEST as i32 {
+                // Two pairs of one width take only multiples of it (of widths up to 3, only
+                // equal ones share a factor): their fits are passed by without a look. Most
+                // failed tries look at every pair of fits (80,549 raw units with a jerk of 1,
+                // four failed tries: 24,511 → 21,554 Cortex-M4 instructions).
                 let seconds = fits.reach[w2 as usize - 1];
-                if !passes(fits.reach[w1 as usize - 1], seconds) {
+                if (w1 == w2 && rest % w1 != 0) || !passes(fits.reach[w1 as usize - 1], seconds) {
                     continue;
                 }
                 for &first in fits.of_width(w1) {
