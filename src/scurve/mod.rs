@@ -43,8 +43,9 @@
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
 //! checked). Measured (see the README for the commands): 8,688 Cortex-M4 instructions median,
 //! 15,268 at worst over the first 1,000 random moves, 16,836 over 5,000, 17,123 over 20,000,
-//! 19,985 over 100,000 (a jerk of one raw unit, whose first shapes' remainders do not fit); on
-//! the x86 development machine a few hundred nanoseconds median, under about 2 µs at worst.
+//! 19,985 over 100,000 (a jerk of one raw unit, whose first shapes' remainders do not fit), but
+//! 13 of the next 500,000 over SPEC §16's 20,000 (worst 24,520, such a move); on the x86
+//! development machine a few hundred nanoseconds median, under about 2 µs at worst.
 //! Tiny moves with a jerk of one or two raw units are read from a table of their fastest plans
 //! ([`tiny`]: no plan of fewer cycles exists); short moves where only a jerk of three raw units
 //! or more binds (mostly from fractional positions) are sums of unit volumes ([`volumes`]), and
@@ -52,9 +53,9 @@
 //! optimum cannot finish are planned by [`pure_jerk`] where only the jerk binds, else try up to
 //! 24 more pairs of ramps around it, then the same shapes with one unit's area more in the
 //! remainder, which costs more (random moves from fractional positions with a jerk of 1 to 15
-//! raw units: a sample of 20,000 within SPEC §16's 20,000, worst 19,709, a jerk of 3 raw units
+//! raw units: a sample of 20,000 within SPEC §16's 20,000, worst 19,087, a jerk of 3 raw units
 //! whose rest no two pairs of `pure_jerk` reach, planned by the search; CI's sample of 3,000
-//! worst 16,369). A step is at most 33 Cortex-M4 instructions (36 on the cycles after an abrupt
+//! worst 14,606; 7 of a survey of 500,000 over, worst 23,121). A step is at most 33 Cortex-M4 instructions (36 on the cycles after an abrupt
 //! stop), 18 on x86.
 
 mod predict;
