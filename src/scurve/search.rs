@@ -370,6 +370,8 @@ fn fastest_fit(move_: &Move, found: &[Shape], out: &mut Schedule) -> bool {
     // Candidates tried at their own cruise already, ahead of their turn: bit 2·shape + index.
     let mut tried = 0u16;
     let mut failed = Failed::default();
+    // Each attempt's main move, written over the last's.
+    let mut main = MainMove::default();
     'shapes: for (i, shape) in found[..len].iter().enumerate() {
         // The mix that meets the velocity from below, and — unless it meets it exactly — the
         // one from above with a velocity notch; the faster first (as [`Shape::candidates`],
@@ -390,7 +392,15 @@ fn fastest_fit(move_: &Move, found: &[Shape], out: &mut Schedule) -> bool {
                 continue;
             };
             if tried & (1 << (2 * i + k)) == 0
-                && complete_once(candidate, candidate.c, move_, out, &mut failed, false)
+                && complete_once(
+                    candidate,
+                    candidate.c,
+                    move_,
+                    out,
+                    &mut failed,
+                    false,
+                    &mut main,
+                )
             {
                 planned = true;
                 break 'shapes;
@@ -417,14 +427,23 @@ fn fastest_fit(move_: &Move, found: &[Shape], out: &mut Schedule) -> bool {
                             continue;
                         }
                         tried |= bit;
-                        if complete_once(early, early.c, move_, out, &mut failed, false) {
+                        if complete_once(early, early.c, move_, out, &mut failed, false, &mut main)
+                        {
                             planned = true;
                             break 'shapes;
                         }
                     }
                 }
             }
-            if complete_once(candidate, candidate.c + 1, move_, out, &mut failed, true) {
+            if complete_once(
+                candidate,
+                candidate.c + 1,
+                move_,
+                out,
+                &mut failed,
+                true,
+                &mut main,
+            ) {
                 planned = true;
                 break 'shapes;
             }
@@ -550,6 +569,7 @@ fn complete(
     move_: &Move,
     out: &mut Schedule,
     retried: bool,
+    main: &mut MainMove,
 ) -> bool {
     let mix = &candidate.mix;
     let notch = candidate.notch;
@@ -579,15 +599,15 @@ fn complete(
     // kind with the most early units (the widest choice of sums).
     let give_back = (0..4).filter(|&k| early[k] > 0).max_by_key(|&k| early[k]);
     let (area, available) = give_back.map_or((0, 0), |k| (areas[k], early[k]));
-    let main = mix.main_move(c, early);
+    mix.write_main_move(c, early, main);
     let bounds = main.bounds();
     let mut placement = Placement::default();
-    if notch > 0 && !place_velocity_notch(&mut placement, notch, c, &main, &bounds, jerk) {
+    if notch > 0 && !place_velocity_notch(&mut placement, notch, c, main, &bounds, jerk) {
         return false;
     }
     let Some(given) = remainder::take(
         over,
-        &main,
+        main,
         &bounds,
         &mut placement,
         jerk,
@@ -599,14 +619,13 @@ fn complete(
     match give_back {
         Some(k) if given > 0 => {
             early[k] -= given;
-            // A move of its own, not a copy of one into the other's place (a few hundred
-            // bytes: about an instruction a byte on a Cortex-M4).
-            let fewer_early = mix.main_move(c, early);
+            // Written over the first (not needed after this), not copied.
+            mix.write_main_move(c, early, main);
             // Fewer early units can only move phase V later; the pairs must still fit.
-            placement.fits(0, &fewer_early, &fewer_early.bounds(), jerk)
-                && finish(&fewer_early, &placement, (mix.a, mix.b), move_, out)
+            placement.fits(0, main, &main.bounds(), jerk)
+                && finish(main, &placement, (mix.a, mix.b), move_, out)
         }
-        _ => finish(&main, &placement, (mix.a, mix.b), move_, out),
+        _ => finish(main, &placement, (mix.a, mix.b), move_, out),
     }
 }
 
@@ -623,12 +642,13 @@ fn complete_once(
     out: &mut Schedule,
     failed: &mut Failed,
     retried: bool,
+    main: &mut MainMove,
 ) -> bool {
     let longest_kind = candidate.mix.counts[0] > 0;
     if !longest_kind && failed.contains(&Attempt::of(candidate, c)) {
         return false;
     }
-    if complete(candidate, c, move_, out, retried) {
+    if complete(candidate, c, move_, out, retried, main) {
         return true;
     }
     if longest_kind {
@@ -663,16 +683,17 @@ fn complete_fine(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule
         left = (left + areas[k]).saturating_sub(over);
         over = over.saturating_sub(areas[k]);
     }
-    let main = mix.main_move(c, early);
+    let mut main = mix.main_move(c, early);
     let longest = main.total().saturating_sub(2);
-    let main = match left {
-        0 => main,
-        x if x <= longest => main.with_fine_unit(x),
+    match left {
+        0 => {}
+        x if x <= longest => main.add_fine_unit(x),
         x if x - longest >= 2 && x - longest <= longest => {
-            main.with_fine_unit(longest).with_fine_unit(x - longest)
+            main.add_fine_unit(longest);
+            main.add_fine_unit(x - longest);
         }
         _ => return false,
-    };
+    }
     finish(&main, &Placement::default(), (mix.a, mix.b), move_, out)
 }
 
@@ -741,6 +762,7 @@ fn around(move_: &Move, out: &mut Schedule) -> bool {
     wide.sort_unstable_by_key(|shape| shape.cycles);
     let mut tries = 0;
     let mut failed = Failed::default();
+    let mut main = MainMove::default();
     for shape in wide.iter() {
         let Some(candidate) = shape.candidate(true, distance, limits) else {
             continue;
@@ -757,6 +779,7 @@ fn around(move_: &Move, out: &mut Schedule) -> bool {
                 out,
                 &mut failed,
                 extra == 1,
+                &mut main,
             ) {
                 return true;
             }

@@ -86,11 +86,22 @@ pub(super) fn corners(a: u64, b: u64, c: u64) -> [(u64, i64); 8] {
 pub(super) const MAX_GROUPS: usize = 10;
 
 /// The main move: groups of units whose heights add up to at most the jerk limit.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, Default)]
 pub(super) struct MainMove {
+    /// The groups in `[0, len)`; those after them are not the move's (a main move written over
+    /// another, [`Mix::write_main_move`], leaves them as they were).
     groups: [Group; MAX_GROUPS],
     len: usize,
 }
+
+/// Main moves are equal when their groups are.
+impl PartialEq for MainMove {
+    fn eq(&self, other: &Self) -> bool {
+        self.groups() == other.groups()
+    }
+}
+
+impl Eq for MainMove {}
 
 impl MainMove {
     /// The groups.
@@ -98,16 +109,16 @@ impl MainMove {
         &self.groups[..self.len]
     }
 
-    /// With a *fine unit* `tb(1, 1, cycles)`: a velocity of one raw unit for `cycles` cycles
-    /// from the first, `cycles` raw units of distance.
-    pub fn with_fine_unit(mut self, cycles: u64) -> Self {
+    /// Adds a *fine unit* `tb(1, 1, cycles)`: a velocity of one raw unit for `cycles` cycles
+    /// from the first, `cycles` raw units of distance. (In place: a main move is a few hundred
+    /// bytes, which a move by value copied, about an instruction a byte on a Cortex-M4.)
+    pub fn add_fine_unit(&mut self, cycles: u64) {
         self.push(Group {
             count: 1,
             a: 1,
             b: 1,
             c: cycles,
         });
-        self
     }
 
     /// The move of `groups` (those without a unit left out).
@@ -341,6 +352,14 @@ impl Mix {
     /// `early[k]` units of kind `k`, whose cruise is one cycle shorter.
     pub fn main_move(&self, c: u64, early: [u64; 4]) -> MainMove {
         let mut main = MainMove::default();
+        self.write_main_move(c, early, &mut main);
+        main
+    }
+
+    /// [`Self::main_move`] written over `main`: the search tries main move after main move, and
+    /// a new one is a few hundred bytes cleared (about an instruction a byte on a Cortex-M4).
+    pub fn write_main_move(&self, c: u64, early: [u64; 4], main: &mut MainMove) {
+        main.len = 0;
         for (k, (a, b)) in self.kinds().into_iter().enumerate() {
             main.push(Group {
                 count: self.counts[k] - early[k],
@@ -355,7 +374,6 @@ impl Mix {
                 c: c - 1,
             });
         }
-        main
     }
 
     /// The area `aₖ·bₖ` of one unit of each kind.
