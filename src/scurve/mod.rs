@@ -41,10 +41,10 @@
 //! Planning takes a bounded number of integer operations, the same on every target (no floating
 //! point): at most eight shapes, each solved in closed form, a fixed number of notch-pair
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
-//! checked). Measured (see the README for the commands): 8,688 Cortex-M4 instructions median,
-//! 15,268 at worst over the first 1,000 random moves, 16,836 over 5,000, 17,123 over 20,000,
-//! 19,985 over 100,000 (a jerk of one raw unit, whose first shapes' remainders do not fit), but
-//! 13 of the next 500,000 over SPEC §16's 20,000 (worst 24,520, such a move); on the x86
+//! checked). Measured (see the README for the commands): 8,716 Cortex-M4 instructions median,
+//! 15,153 at worst over the first 1,000 random moves, 16,482 over 5,000, 16,966 over 20,000,
+//! 19,651 over 100,000, but 8 of the next 500,000 over SPEC §16's 20,000 (worst 23,992: a jerk
+//! of one raw unit, whose first shapes' remainders do not fit); on the x86
 //! development machine a few hundred nanoseconds median, under about 2 µs at worst.
 //! Tiny moves with a jerk of one or two raw units are read from a table of their fastest plans
 //! ([`tiny`]: no plan of fewer cycles exists); short moves where only a jerk of three raw units
