@@ -55,13 +55,30 @@ impl Notch {
 pub(super) const MAX_NOTCHES: usize = 3;
 
 /// The notch pairs of a plan.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, Default)]
 pub(super) struct Placement {
+    /// The pairs in `[0, len)`; those after them are not the placement's (one cleared,
+    /// [`Self::clear`], leaves them as they were).
     notches: [Notch; MAX_NOTCHES],
     len: usize,
 }
 
+/// Placements are equal when their pairs are.
+impl PartialEq for Placement {
+    fn eq(&self, other: &Self) -> bool {
+        self.notches() == other.notches()
+    }
+}
+
+impl Eq for Placement {}
+
 impl Placement {
+    /// No pairs, as [`Self::default`] without writing the array over (the search places pairs
+    /// attempt after attempt into one placement).
+    pub fn clear(&mut self) {
+        self.len = 0;
+    }
+
     /// The pairs placed.
     pub fn notches(&self) -> &[Notch] {
         &self.notches[..self.len]
