@@ -241,7 +241,9 @@ impl Volumes {
         // `top` is a volume (of at most `cycles` cycles): listed.
         let mut place = LISTED.partition_point(|&listed| usize::from(listed) < first);
         loop {
-            // `Self::holds(rest − first)`.
+            // `Self::holds(rest − first)` without its test of 0 (`first < rest`): calling it
+            // measured +270 Cortex-M4 instructions on a move with no sum (5,119 raw units with
+            // a jerk of 4), every read spent here.
             self.reads += 1;
             if UNITS
                 .get(rest - first)
@@ -529,17 +531,9 @@ mod tests {
             let largest = u64::from(LARGEST[cycles as usize]);
             for most in (0..VOLUMES as u64).step_by(7) {
                 for spent in [0, MAX_READS - 40, MAX_READS - 3, MAX_READS - 1, MAX_READS] {
-                    let (mut expected_reads, mut volume) = (spent, most.min(largest));
-                    let expected = loop {
-                        if volume == 0 || expected_reads >= MAX_READS {
-                            break 0;
-                        }
-                        expected_reads += 1;
-                        if u64::from(unit_cycles(UNITS[volume as usize])) <= cycles {
-                            break volume;
-                        }
-                        volume -= 1;
-                    };
+                    let mut expected_reads = spent;
+                    let expected =
+                        largest_one_at_a_time(most, cycles, largest, &mut expected_reads);
                     let mut volumes = Volumes {
                         cycles,
                         largest,
