@@ -21,6 +21,12 @@
 //! that a dip could take below zero; the class's limits leave the acceleration and velocity
 //! limits out of reach); the schedule is built once, for the plan found.
 //!
+//! Where a cycle count's candidates all fail, its main moves whose rest is `w·k` for a width
+//! `w` from 4 to [`WIDEST_ALONE`] are tried with that one wide pair ([`Tries::wide_pairs`]):
+//! a rest beyond two narrow pairs' reach, or in a gap of their spans, may be a single wide
+//! pair's (119,285 raw units with a jerk of 7 from a fractional position: none of four cycle
+//! counts had a main move narrow pairs finish, one of 83 cycles leaves `259 = 7·37`).
+//!
 //! The search calls it after its shapes, where their plan is more than three cycles over the
 //! optimum or missing ([`improve`]), or before them where the jerk is at most 15 raw units
 //! ([`FIRST_JERK`], [`first`]: the pass with the pairs' impulses apart — no cycle with two of
@@ -30,7 +36,8 @@
 //!
 //! Its cost is bounded: at most [`COUNTS`] cycle counts, for each a few main moves per first ramp
 //! (the second ramps whose distance is just above the move's), at most [`MAX_CHECKS`] candidates
-//! checked per pass and two passes.
+//! checked per pass and two passes, and at most [`MAX_WIDE`] main moves a count and
+//! [`MAX_WIDE_CHECKS`] candidates in all with a wide pair.
 
 use super::remainder::{Notch, Placement};
 use super::roots::cube_root;
@@ -300,6 +307,9 @@ fn plan(
         checks: [0; 2],
         profile: Profile::new(limits),
         fits: Fits::EMPTY,
+        wide: [(0, 0, 0, 0, 0); MAX_WIDE],
+        wides: 0,
+        wide_checks: 0,
         out,
     };
     if narrow {
@@ -317,6 +327,7 @@ fn plan_in<W: Word>(tries: &mut Tries, counts: core::ops::RangeInclusive<u64>) -
     let (distance_w, jerk_w) = (W::of(distance), W::of(jerk));
     let (one, two) = (W::one(), W::of(2));
     for total in counts {
+        tries.wides = 0;
         // Every first ramp from the first that covers the distance on: the later ones cover more.
         for a in first_ramp(distance, jerk, total)..=total / 4 {
             let reach = reach(total, a);
@@ -358,6 +369,9 @@ fn plan_in<W: Word>(tries: &mut Tries, counts: core::ops::RangeInclusive<u64>) -
                 b_w = b_w + one;
             }
         }
+        if let Some(planned) = tries.wide_pairs(total) {
+            return planned;
+        }
     }
     false
 }
@@ -374,6 +388,13 @@ struct Tries<'s> {
     checks: [u32; 2],
     profile: Profile,
     fits: Fits,
+    /// The present cycle count's main moves, `(a, b, c, e, rest)`, whose rest one wide pair
+    /// may take ([`wide_may_take`]), the first [`MAX_WIDE`]: tried once the count's other
+    /// candidates have failed ([`Tries::wide_pairs`]).
+    wide: [(u64, u64, u64, u64, u64); MAX_WIDE],
+    wides: usize,
+    /// Wide pairs checked so far (at most [`MAX_WIDE_CHECKS`]).
+    wide_checks: u32,
     out: &'s mut Schedule,
 }
 
@@ -394,20 +415,7 @@ impl Tries<'_> {
         if NEAR_REACH.1 * rest < NEAR_REACH.0 * reach
             && (early > 0 || small_rest_may_fit(rest, a, b, c))
         {
-            let groups = [
-                Group {
-                    count: self.limits.jerk - early,
-                    a,
-                    b,
-                    c,
-                },
-                Group {
-                    count: early,
-                    a,
-                    b,
-                    c: c - 1,
-                },
-            ];
+            let groups = self.groups((a, b, c), early);
             self.profile.set(&groups, total);
             if rest > 0 {
                 self.fits.fill(&self.profile);
@@ -419,18 +427,7 @@ impl Tries<'_> {
                     .flatten()
             });
             if let Some(placement) = placement {
-                // The main move only for the plan found (most candidates fail): a
-                // [`MainMove`] is a few hundred bytes to clear and fill.
-                let main = MainMove::of_groups(&groups);
-                let built = self.out.build(&main, &placement, self.direction, (a, b));
-                // Checked cycle by cycle by `Profile::fits`; the tests run with debug
-                // assertions, and every plan made here is replayed as well.
-                debug_assert!(
-                    self.out.lands(self.direction, self.limits, self.distance),
-                    "a plan that breaks a limit or misses the distance: {:?}",
-                    (&main, &placement, self.distance, self.limits)
-                );
-                return Some(built);
+                return Some(self.build(&groups, &placement));
             }
             if self
                 .passes
@@ -440,8 +437,131 @@ impl Tries<'_> {
                 return Some(false);
             }
         }
+        if rest > 0 && a >= 2 && self.wides < MAX_WIDE && wide_may_take(rest, total, a, b) {
+            self.wide[self.wides] = (a, b, c, early, rest);
+            self.wides += 1;
+        }
         None
     }
+
+    /// Tries one wide pair ([`wide_may_take`]) on the main moves of `total` cycles kept for it,
+    /// in their order: `Some(planned)` where a plan was built into `out`, `None` to go on.
+    ///
+    /// A single pair of width `w` and span `k > w` dips the velocity by
+    /// `min(m + 1, w, w + k − 1 − m)` on its `m`-th cycle, from its start `s`: at most `n + 1`
+    /// on cycle `n = s + m`, and at most `total − 2 − n` (its last impulse, on `s + k + w`, is
+    /// before the move's last cycle), and at most `w ≤ a·b`. The main move is at least that fast
+    /// there ([`Profile::set_pieces`]: `min(n + 1, total − 2 − n, a·b)`), so the velocity stays
+    /// at least zero wherever the pair sits, as [`Profile::fits`] assumes on its fast cycles
+    /// (where it assumes dips of at most [`SLOW`]); the jerk is checked as for any pair.
+    #[inline(never)]
+    fn wide_pairs(&mut self, total: u64) -> Option<bool> {
+        for i in 0..self.wides {
+            let (a, b, c, early, rest) = self.wide[i];
+            let groups = self.groups((a, b, c), early);
+            // Cycles in 32 bits, as [`Profile::set`] has them; the rest is under
+            // `a·b < 2^14` (the moves here are under 2^9 cycles): 32-bit divisions.
+            let shape = (a as i32, b as i32, c as i32, i32::from(early > 0));
+            let rest = rest as i32;
+            let mut set = false;
+            for w in WIDEST as i32 + 1..=WIDEST_ALONE.min((a * b) as i32) {
+                let k = rest / w;
+                if k * w != rest || k <= w {
+                    continue;
+                }
+                self.fits.fill_closed_width(shape, total as i32, w, 0);
+                for &fit in &self.fits.fits[0][..self.fits.lens[0]] {
+                    let (lo, hi) = fit.spans();
+                    if k < lo || k > hi {
+                        continue;
+                    }
+                    if !set {
+                        self.profile.set(&groups, total);
+                        set = true;
+                    }
+                    let (first, last) = fit.range(k);
+                    for start in [first, last] {
+                        if self.wide_checks >= MAX_WIDE_CHECKS {
+                            return None;
+                        }
+                        self.wide_checks += 1;
+                        self.profile.ready();
+                        if self.profile.fits(&[(start, w, k)]) {
+                            return Some(self.build(&groups, &placement(&[(start, w, k)])));
+                        }
+                    }
+                }
+            }
+        }
+        None
+    }
+
+    /// `J − e` units of `tb(a, b, c)` and `e` of `tb(a, b, c − 1)`.
+    fn groups(&self, (a, b, c): (u64, u64, u64), early: u64) -> [Group; 2] {
+        [
+            Group {
+                count: self.limits.jerk - early,
+                a,
+                b,
+                c,
+            },
+            Group {
+                count: early,
+                a,
+                b,
+                c: c - 1,
+            },
+        ]
+    }
+
+    /// Builds the plan of `groups` less `placement` into `out` (whether it was built).
+    fn build(&mut self, groups: &[Group; 2], placement: &Placement) -> bool {
+        // The main move only for the plan found (most candidates fail): a [`MainMove`] is a
+        // few hundred bytes to clear and fill.
+        let main = MainMove::of_groups(groups);
+        let (a, b) = (groups[0].a, groups[0].b);
+        let built = self.out.build(&main, placement, self.direction, (a, b));
+        // Checked cycle by cycle by `Profile::fits`; the tests run with debug assertions, and
+        // every plan made here is replayed as well.
+        debug_assert!(
+            self.out.lands(self.direction, self.limits, self.distance),
+            "a plan that breaks a limit or misses the distance: {:?}",
+            (&main, placement, self.distance, self.limits)
+        );
+        built
+    }
+}
+
+/// The widest single notch pair tried where pairs of widths up to [`WIDEST`] cannot take a
+/// main move's rest ([`Tries::wide_pairs`]). Before it, moves whose every main move left a rest
+/// beyond those pairs' reach or between their spans went to the search, which planned them at
+/// 18,000–23,000 Cortex-M4 instructions; the widths that took them, found by hand over those
+/// moves, were 7 to 11. On the probe, over a survey of 500,000 moves from fractional positions
+/// (seeds 101–110, 50,000 each): over SPEC §16's 20,000 6 → 3 (119,285 raw units with a jerk of
+/// 7: 22,821 → 11,279; 75,614 / 6: 21,814 → 6,787), sums +0.35 %; `tools/ab_plans.sh`: 1,890 of
+/// 200,000 plans differ, 1,888 shorter, none longer (−1,928 cycles).
+const WIDEST_ALONE: i32 = 12;
+
+/// Main moves kept per cycle count for a wide pair ([`Tries::wide_pairs`]): the cost of a count
+/// whose wide pairs fail stays bounded (each main move costs its fits of each width that
+/// divides its rest, about 100 Cortex-M4 instructions a width).
+const MAX_WIDE: usize = 4;
+
+/// Candidates with a wide pair checked per plan at most (each about 600 Cortex-M4 instructions
+/// for the main move's pieces and the check).
+const MAX_WIDE_CHECKS: u32 = 8;
+
+/// Whether one notch pair wider than [`WIDEST`] may take `rest` off a main move of `total`
+/// cycles whose ramps are `a` and `b`: `rest = w·k` with `k > w`, the span within the reach
+/// of [`reach`] (`k ≤ total − 2a − 1 + w`), and `w ≤ a·b` (see [`Tries::wide_pairs`]).
+fn wide_may_take(rest: u64, total: u64, a: u64, b: u64) -> bool {
+    // In 32 bits: `rest < a·b < 2^14` and `total < 2^9` (see [`plan`]); a 64-bit division is
+    // a library call on a Cortex-M4, a 32-bit one an instruction.
+    let (rest, longest, area) = (rest as u32, (total - 2 * a) as u32, (a * b) as u32);
+    (WIDEST as u32 + 1..=WIDEST_ALONE as u32).any(|w| {
+        let k = rest / w;
+        k * w == rest && k > w && k < longest + w && w <= area
+    })
 }
 
 /// The integers [`plan_in`] searches for main moves in: `u32` where its products fit
@@ -972,6 +1092,13 @@ struct Fit {
 }
 
 impl Fit {
+    /// No room: a table's entry before it is written.
+    const EMPTY: Self = Self {
+        starts: (0, 0),
+        raises: (0, 0),
+        reach: (0, 0),
+    };
+
     /// The fit of a pair of width `w` with its starts in `starts` and its raises in `raises`,
     /// its reach found, if it has spans at all.
     fn of(starts: Interval, raises: Interval, w: i32) -> Option<Self> {
@@ -1023,11 +1150,7 @@ struct Fits {
 impl Fits {
     /// No fits yet ([`Self::fill`] finds them).
     const EMPTY: Self = Self {
-        fits: [[Fit {
-            starts: (0, 0),
-            raises: (0, 0),
-            reach: (0, 0),
-        }; MAX_FITS]; WIDEST as usize],
+        fits: [[Fit::EMPTY; MAX_FITS]; WIDEST as usize],
         lens: [0; WIDEST as usize],
         reach: [(0, 0); WIDEST as usize],
         starts: [(0, 0); MAX_INTERVALS * 2],
@@ -1058,49 +1181,63 @@ impl Fits {
     /// and raises before `Lⱼ` (`Sᵢ`, `Uⱼ`) have spans only for `i ≤ j` (each `Uⱼ` ends before
     /// `Lⱼ`, each `Sᵢ` starts in `Lᵢ`): six fits a width at most, in the order
     /// `S₁U₁ S₁U₂ S₁U₃ S₂U₂ S₂U₃ S₃U₃`. (With `a = 1` intervals meet and merge.)
-    fn fill_closed(&mut self, (a, b, c, late): (i32, i32, i32, i32), total: i32) {
+    fn fill_closed(&mut self, shape: (i32, i32, i32, i32), total: i32) {
+        for w in 1..=WIDEST as i32 {
+            self.fill_closed_width(shape, total, w, w as usize - 1);
+        }
+    }
+
+    /// The fits of a pair of width `w` in closed form ([`Self::fill_closed`]) as the table's
+    /// `row`: its own for `w` up to [`WIDEST`]; row 0 for a wider pair
+    /// ([`Tries::wide_pairs`], once the table's main moves are tried: the next main move
+    /// fills the table again).
+    #[inline(always)]
+    fn fill_closed_width(
+        &mut self,
+        (a, b, c, late): (i32, i32, i32, i32),
+        total: i32,
+        w: i32,
+        i: usize,
+    ) {
         let last = total - 1;
         // No cruise: `S₂` and `U₂` empty (`lo > hi`).
         let cruise = c > a + b;
-        for w in 1..=WIDEST as i32 {
-            // As `fill_from_room`'s intersections with the raising room `[a, c + b − 1]`.
-            let s1 = ((a - w).max(0), (b - 1).min(c + b - 1 - w));
-            let s2 = if cruise {
-                (a + b, (c - 1).min(c + b - 1 - w))
-            } else {
-                (1, 0)
-            };
-            let s3 = (c + a - late, c + b - 1 - w);
-            let u1 = (a, b - 1 - w);
-            let u2 = if cruise {
-                (a.max(a + b - w), c - 1 - w)
-            } else {
-                (1, 0)
-            };
-            let u3 = (a.max(c + a - late - w), (c + b - 1).min(last - w));
-            let i = w as usize - 1;
-            let (mut len, mut reach) = (0, (i32::MAX, i32::MIN));
-            let width_fits = &mut self.fits[i];
-            let mut add = |starts: Interval, raises: Interval| {
-                // `fill_from_room` keeps only intervals that are not empty.
-                let kept = (starts.0 <= starts.1 && raises.0 <= raises.1)
-                    .then(|| Fit::of(starts, raises, w))
-                    .flatten();
-                if let Some(fit) = kept {
-                    width_fits[len] = fit;
-                    len += 1;
-                    reach = (reach.0.min(fit.reach.0), reach.1.max(fit.reach.1));
-                }
-            };
-            add(s1, u1);
-            add(s1, u2);
-            add(s1, u3);
-            add(s2, u2);
-            add(s2, u3);
-            add(s3, u3);
-            self.lens[i] = len;
-            self.reach[i] = reach;
-        }
+        // As `fill_from_room`'s intersections with the raising room `[a, c + b − 1]`.
+        let s1 = ((a - w).max(0), (b - 1).min(c + b - 1 - w));
+        let s2 = if cruise {
+            (a + b, (c - 1).min(c + b - 1 - w))
+        } else {
+            (1, 0)
+        };
+        let s3 = (c + a - late, c + b - 1 - w);
+        let u1 = (a, b - 1 - w);
+        let u2 = if cruise {
+            (a.max(a + b - w), c - 1 - w)
+        } else {
+            (1, 0)
+        };
+        let u3 = (a.max(c + a - late - w), (c + b - 1).min(last - w));
+        let (mut len, mut reach) = (0, (i32::MAX, i32::MIN));
+        let width_fits = &mut self.fits[i];
+        let mut add = |starts: Interval, raises: Interval| {
+            // `fill_from_room` keeps only intervals that are not empty.
+            let kept = (starts.0 <= starts.1 && raises.0 <= raises.1)
+                .then(|| Fit::of(starts, raises, w))
+                .flatten();
+            if let Some(fit) = kept {
+                width_fits[len] = fit;
+                len += 1;
+                reach = (reach.0.min(fit.reach.0), reach.1.max(fit.reach.1));
+            }
+        };
+        add(s1, u1);
+        add(s1, u2);
+        add(s1, u3);
+        add(s2, u2);
+        add(s2, u3);
+        add(s3, u3);
+        self.lens[i] = len;
+        self.reach[i] = reach;
     }
 
     /// [`Self::fill`] from the room's intervals, whatever they are.
@@ -1770,23 +1907,7 @@ mod tests {
             }
             let profile = Profile::of(&groups, limits, total);
             let main = summed(&groups, total);
-            let exact = |pairs: &[Pair]| {
-                let (mut jerk, mut acceleration, mut velocity) = (0i64, 0i64, 0i64);
-                (0..total as i32 + 2).all(|n| {
-                    jerk = main[n as usize].0
-                        + pairs
-                            .iter()
-                            .flat_map(|&pair| impulses_of(pair))
-                            .filter(|&(at, _)| at == n)
-                            .map(|(_, change)| change)
-                            .sum::<i64>();
-                    acceleration += jerk;
-                    velocity += acceleration;
-                    jerk.abs() <= jerk_limit as i64
-                        && acceleration.abs() <= limits.acceleration as i64
-                        && velocity >= 0
-                })
-            };
+            let exact = |pairs: &[Pair]| fits_exactly(&main, pairs, limits);
             let t = total as i32;
             // Pairs as a Fit places them: inside the move, ending before its last cycle.
             let placed: Vec<Pair> = (0..t)
@@ -1818,6 +1939,94 @@ mod tests {
             );
         }
         assert!(checked[0] > 1_000 && checked[1] > 10_000, "{checked:?}");
+    }
+
+    /// Whether `pairs` taken off the main move `main` ([`summed`]) keep its jerk and
+    /// acceleration within `limits` and its velocity at least zero, cycle by cycle.
+    fn fits_exactly(main: &[(i64, i64, i64)], pairs: &[Pair], limits: Limits64) -> bool {
+        let (mut acceleration, mut velocity) = (0i64, 0i64);
+        main.iter().enumerate().all(|(n, &(main_jerk, _, _))| {
+            let jerk = main_jerk
+                + pairs
+                    .iter()
+                    .flat_map(|&pair| impulses_of(pair))
+                    .filter(|&(at, _)| at == n as i32)
+                    .map(|(_, change)| change)
+                    .sum::<i64>();
+            acceleration += jerk;
+            velocity += acceleration;
+            jerk.abs() <= limits.jerk as i64
+                && acceleration.abs() <= limits.acceleration as i64
+                && velocity >= 0
+        })
+    }
+
+    /// One pair wider than [`WIDEST`] ([`Tries::wide_pairs`]), of a width up to the main
+    /// move's plateau `a·b`, fits exactly where [`Profile::fits`] says it does, its velocity
+    /// never looked at on the main move's fast cycles: a single pair's dip is never deeper
+    /// than the main move is fast.
+    #[test]
+    fn a_wide_pair_fits_where_fits_says() {
+        let mut checked = 0usize;
+        let mut fitting = 0usize;
+        for (a, b) in [(2, 2), (2, 3), (3, 5), (4, 6), (5, 5), (4, 9), (6, 7)] {
+            for extra in [0, 1, 3, 20] {
+                let c = a + b + 1 + extra;
+                let total = a + b + c;
+                for (count, early) in [(1, 0), (1, 1), (3, 0), (2, 2), (4, 3), (5, 2)] {
+                    let group = |count, c| Group { count, a, b, c };
+                    let groups = [group(count, c), group(early, c - 1)];
+                    let limits = wide(count + early);
+                    let profile = Profile::of(&groups, limits, total);
+                    let main = summed(&groups, total);
+                    let t = total as i32;
+                    for w in WIDEST as i32 + 1..=WIDEST_ALONE.min((a * b) as i32) {
+                        for s in 0..t {
+                            for k in (w + 1..t).filter(|&k| s + k + w < t) {
+                                let fits = profile.fits(&[(s, w, k)]);
+                                assert_eq!(
+                                    fits,
+                                    fits_exactly(&main, &[(s, w, k)], limits),
+                                    "{groups:?}: {:?}",
+                                    (s, w, k)
+                                );
+                                checked += 1;
+                                fitting += usize::from(fits);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(
+            checked > 10_000 && fitting > checked / 20 && fitting < checked * 19 / 20,
+            "{fitting} of {checked}"
+        );
+    }
+
+    /// Moves from fractional positions whose main moves leave rests that no two pairs of
+    /// widths up to [`WIDEST`] take on any of the four cycle counts (the search planned them,
+    /// at 18,000–22,000 Cortex-M4 instructions), and one wide pair does. By hand, 119,285 raw
+    /// units with a jerk of 7: six units of `tb(17, 24, 42)` and one of `tb(17, 24, 41)` are
+    /// `102,816 + 16,728 = 119,544`, a pair of width 7 and span 37 takes the 259 over (83
+    /// cycles; `⌊∛(32·119,285/7)⌋ = 81`).
+    #[test]
+    fn one_wide_pair_takes_what_two_narrow_ones_cannot() {
+        for (distance, jerk) in [
+            (119_285, 7),
+            (120_066, 7),
+            (75_614, 6),
+            (75_608, 6),
+            (120_811, 4),
+        ] {
+            let floor = cube_root(32 * distance / jerk);
+            let total = planned(distance, jerk).plan.total;
+            assert!(
+                total <= floor + 3,
+                "{distance}, J {jerk}: {total} > {floor} + 3"
+            );
+        }
+        assert_eq!(6 * 17 * 24 * 42 + 17 * 24 * 41 - 7 * 37, 119_285);
     }
 
     /// The first ramp that can cover the distance is the first of `1..=total/4` with a main
