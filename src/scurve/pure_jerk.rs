@@ -437,7 +437,13 @@ impl Tries<'_> {
                 return Some(false);
             }
         }
-        if rest > 0 && a >= 2 && self.wides < MAX_WIDE && wide_may_take(rest, total, a, b) {
+        // Not with one unit of jerk ([`WIDEST_ALONE`]).
+        if self.limits.jerk >= 2
+            && rest > 0
+            && a >= 2
+            && self.wides < MAX_WIDE
+            && wide_may_take(rest, total, a, b)
+        {
             self.wide[self.wides] = (a, b, c, early, rest);
             self.wides += 1;
         }
@@ -458,23 +464,29 @@ impl Tries<'_> {
     fn wide_pairs(&mut self, total: u64) -> Option<bool> {
         for i in 0..self.wides {
             let (a, b, c, early, rest) = self.wide[i];
-            let groups = self.groups((a, b, c), early);
-            // Cycles in 32 bits, as [`Profile::set`] has them; the rest is under
-            // `a·b < 2^14` (the moves here are under 2^9 cycles): 32-bit divisions.
+            // Cycles in 32 bits, as [`Profile::set`] has them; the rest is at most
+            // `max(a·b, reach) < 2^15` (the moves here are under 2^9 cycles): unsigned 32-bit
+            // divisions, one instruction each on a Cortex-M4.
             let shape = (a as i32, b as i32, c as i32, i32::from(early > 0));
-            let rest = rest as i32;
+            let (rest, most) = (rest as u32, (a * b).min(WIDEST_ALONE as u64) as u32);
+            // Spans `k < total − 2a + w` ([`reach`]).
+            let longest = (total - 2 * a) as u32;
             let mut set = false;
-            for w in WIDEST as i32 + 1..=WIDEST_ALONE.min((a * b) as i32) {
-                let k = rest / w;
-                if k * w != rest || k <= w {
+            let mut width = WIDEST as u32 + 1;
+            while width <= most {
+                let (w, k) = (width, rest / width);
+                width += 1;
+                if k * w != rest || k <= w || k >= longest + w {
                     continue;
                 }
+                let (w, k) = (w as i32, k as i32);
                 self.fits.fill_closed_width(shape, total as i32, w, 0);
                 for &fit in &self.fits.fits[0][..self.fits.lens[0]] {
                     let (lo, hi) = fit.spans();
                     if k < lo || k > hi {
                         continue;
                     }
+                    let groups = self.groups((a, b, c), early);
                     if !set {
                         self.profile.set(&groups, total);
                         set = true;
@@ -533,13 +545,20 @@ impl Tries<'_> {
 }
 
 /// The widest single notch pair tried where pairs of widths up to [`WIDEST`] cannot take a
-/// main move's rest ([`Tries::wide_pairs`]). Before it, moves whose every main move left a rest
-/// beyond those pairs' reach or between their spans went to the search, which planned them at
-/// 18,000–23,000 Cortex-M4 instructions; the widths that took them, found by hand over those
-/// moves, were 7 to 11. On the probe, over a survey of 500,000 moves from fractional positions
-/// (seeds 101–110, 50,000 each): over SPEC §16's 20,000 6 → 3 (119,285 raw units with a jerk of
-/// 7: 22,821 → 11,279; 75,614 / 6: 21,814 → 6,787), sums +0.35 %; `tools/ab_plans.sh`: 1,890 of
-/// 200,000 plans differ, 1,888 shorter, none longer (−1,928 cycles).
+/// main move's rest ([`Tries::wide_pairs`]), with a jerk of 2 raw units or more. Before it,
+/// moves whose every main move left a rest beyond those pairs' reach or between their spans
+/// went to the search, which planned them at 18,000–23,000 Cortex-M4 instructions; the widths
+/// that took them, found by hand over those moves, were 7 to 11. On the probe, over a survey of
+/// 500,000 moves from fractional positions (seeds 101–110, 50,000 each): over SPEC §16's
+/// 20,000 6 → 3 (119,285 raw units with a jerk of 7: 22,821 → 11,299; 75,614 / 6: 21,814 →
+/// 6,637), over 18,000 35 → 21, sums +0.23 %; `tools/ab_plans.sh`: 1,764 of 200,000 plans
+/// differ, 1,762 shorter, none longer (−1,800 cycles). The three left over have a jerk of one
+/// raw unit. With one unit the wide pairs seldom fit (no early units: the rest is the main
+/// move's alone, and its spans fall between the fits'), and where they failed they cost up to
+/// 2,100 more (27,445 raw units: 18,797 → 20,926; 129,425: 19,866 → 21,664, seed 7777),
+/// where the moves they planned were under 20,000 already (79,403: 19,057 → 12,160): so not
+/// with one unit. (Tried last, after every cycle count's narrow pairs, they cost the moves that
+/// need them 2,000 to 7,000 more and planned fewer: 15,095 / J 1 12,386 → 19,833.)
 const WIDEST_ALONE: i32 = 12;
 
 /// Main moves kept per cycle count for a wide pair ([`Tries::wide_pairs`]): the cost of a count
