@@ -42,8 +42,8 @@
 //! point): at most eight shapes, each solved in closed form, a fixed number of notch-pair
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
 //! checked). Measured (see the README for the commands): 8,716 Cortex-M4 instructions median,
-//! 15,153 at worst over the first 1,000 random moves, 16,482 over 5,000, 16,966 over 20,000,
-//! 19,651 over 100,000, but 7 of the next 500,000 over SPEC §16's 20,000 (worst 23,703: a jerk
+//! 15,250 at worst over the first 1,000 random moves, 16,371 over 5,000, 16,917 over 20,000,
+//! 19,539 over 100,000, but 7 of the next 500,000 over SPEC §16's 20,000 (worst 23,703: a jerk
 //! of one raw unit, whose first shapes' remainders do not fit); on the x86 development machine
 //! a few hundred nanoseconds median, under about 2 µs at worst.
 //! Tiny moves with a jerk of one or two raw units are read from a table of their fastest plans
@@ -53,10 +53,10 @@
 //! optimum cannot finish are planned by [`pure_jerk`] where only the jerk binds, else try up to
 //! 24 more pairs of ramps around it, then the same shapes with one unit's area more in the
 //! remainder, which costs more (random moves from fractional positions with a jerk of 1 to 15
-//! raw units: a sample of 20,000 within SPEC §16's 20,000, worst 18,833, a jerk of 3 raw units
-//! whose rest no two pairs of `pure_jerk` reach, planned by the search; CI's sample of 3,000
-//! worst 14,608; 6 of a survey of 500,000 over, worst 22,821). A step is at most 33 Cortex-M4
-//! instructions (36 on the cycles after an abrupt stop), 18 on x86.
+//! raw units: a sample of 20,000 within SPEC §16's 20,000, worst 18,325; CI's sample of 3,000
+//! worst 14,862; 3 of a survey of 500,000 over, worst 22,708, each with a jerk of one raw unit,
+//! whose main moves' rests two narrow pairs seldom take and one wide pair cannot). A step is at
+//! most 33 Cortex-M4 instructions (36 on the cycles after an abrupt stop), 18 on x86.
 
 mod predict;
 mod pure_jerk;
