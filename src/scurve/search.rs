@@ -508,12 +508,22 @@ fn with_fine_units(move_: &Move, out: &mut Schedule) -> bool {
     };
     let mut found = [Shape::default(); MAX_SHAPES];
     let len = shapes(move_.distance, spare, &mut found);
+    // One main move written over by each attempt, and no notch pairs (a `MainMove` is 328
+    // bytes: cleared and copied out per attempt, about 900 Cortex-M4 instructions a try).
+    let mut main = MainMove::default();
+    let none = Placement::default();
     for shape in &found[..len] {
         let Some(candidate) = shape.candidate(true, move_.distance, spare) else {
             continue;
         };
         for extra in 0..2 {
-            if complete_fine(&candidate, candidate.c + extra, move_, out) {
+            if complete_fine(
+                &candidate,
+                candidate.c + extra,
+                move_,
+                (&mut main, &none),
+                out,
+            ) {
                 return true;
             }
         }
@@ -677,7 +687,14 @@ fn complete_once(
 /// As [`complete`], for a mix planned with two units of jerk to spare: one unit more than fits
 /// ends its cruise early, and one or two fine units `tb(1, 1, x)` (`x` raw units each,
 /// `2 ≤ x ≤ total − 2`) add back the difference.
-fn complete_fine(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule) -> bool {
+/// `main` is written over (its last contents are not read); `none` is the empty placement.
+fn complete_fine(
+    candidate: &Candidate,
+    c: u64,
+    move_: &Move,
+    (main, none): (&mut MainMove, &Placement),
+    out: &mut Schedule,
+) -> bool {
     let mix = &candidate.mix;
     let Some(over) = covered(mix, c, 0).and_then(|d| d.checked_sub(move_.distance)) else {
         return false;
@@ -700,7 +717,7 @@ fn complete_fine(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule
         left = (left + areas[k]).saturating_sub(over);
         over = over.saturating_sub(areas[k]);
     }
-    let mut main = mix.main_move(c, early);
+    mix.write_main_move(c, early, main);
     let longest = main.total().saturating_sub(2);
     match left {
         0 => {}
@@ -711,7 +728,7 @@ fn complete_fine(candidate: &Candidate, c: u64, move_: &Move, out: &mut Schedule
         }
         _ => return false,
     }
-    finish(&main, &Placement::default(), (mix.a, mix.b), move_, out)
+    finish(main, none, (mix.a, mix.b), move_, out)
 }
 
 /// Builds the schedule of `main` less `placement` into `out`, sealed (`false` if its phases do
