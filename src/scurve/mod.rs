@@ -43,7 +43,7 @@
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
 //! checked). Measured (see the README for the commands): 8,716 Cortex-M4 instructions median,
 //! 15,250 at worst over the first 1,000 random moves, 16,371 over 5,000, 16,917 over 20,000,
-//! 19,539 over 100,000, but 7 of the next 500,000 over SPEC §16's 20,000 (worst 23,703: a jerk
+//! 19,438 over 100,000, but 6 of the next 500,000 over SPEC §16's 20,000 (worst 23,703: a jerk
 //! of one raw unit, whose first shapes' remainders do not fit); on the x86 development machine
 //! a few hundred nanoseconds median, under about 2 µs at worst.
 //! Tiny moves with a jerk of one or two raw units are read from a table of their fastest plans
