@@ -508,22 +508,15 @@ fn with_fine_units(move_: &Move, out: &mut Schedule) -> bool {
     };
     let mut found = [Shape::default(); MAX_SHAPES];
     let len = shapes(move_.distance, spare, &mut found);
-    // One main move written over by each attempt, and no notch pairs (a `MainMove` is 328
-    // bytes: cleared and copied out per attempt, about 900 Cortex-M4 instructions a try).
-    let mut main = MainMove::default();
-    let none = Placement::default();
+    // Each attempt's main move written over the last's, as [`complete`]'s (its placement
+    // stays empty: fine units take the whole remainder).
+    let mut scratch = Scratch::default();
     for shape in &found[..len] {
         let Some(candidate) = shape.candidate(true, move_.distance, spare) else {
             continue;
         };
         for extra in 0..2 {
-            if complete_fine(
-                &candidate,
-                candidate.c + extra,
-                move_,
-                (&mut main, &none),
-                out,
-            ) {
+            if complete_fine(&candidate, candidate.c + extra, move_, &mut scratch, out) {
                 return true;
             }
         }
@@ -647,9 +640,10 @@ fn complete(
     }
 }
 
-/// What each attempt of [`complete`] writes over the last's: its main move and its notch pairs
-/// (408 bytes, which a fresh pair per attempt cleared: about an instruction a byte on a
-/// Cortex-M4; 275055 of the random moves, five attempts: 24,520 → 23,703 instructions).
+/// What each attempt of [`complete`] (or [`complete_fine`], which places no pairs) writes over
+/// the last's: its main move and its notch pairs (408 bytes, which a fresh pair per attempt
+/// cleared: about an instruction a byte on a Cortex-M4; 275055 of the random moves, five
+/// attempts: 24,520 → 23,703 instructions).
 #[derive(Default)]
 struct Scratch {
     main: MainMove,
@@ -687,14 +681,15 @@ fn complete_once(
 /// As [`complete`], for a mix planned with two units of jerk to spare: one unit more than fits
 /// ends its cruise early, and one or two fine units `tb(1, 1, x)` (`x` raw units each,
 /// `2 ≤ x ≤ total − 2`) add back the difference.
-/// `main` is written over (its last contents are not read); `none` is the empty placement.
+/// `scratch`'s main move is written over; its placement, never written, stays empty.
 fn complete_fine(
     candidate: &Candidate,
     c: u64,
     move_: &Move,
-    (main, none): (&mut MainMove, &Placement),
+    scratch: &mut Scratch,
     out: &mut Schedule,
 ) -> bool {
+    let Scratch { main, placement } = scratch;
     let mix = &candidate.mix;
     let Some(over) = covered(mix, c, 0).and_then(|d| d.checked_sub(move_.distance)) else {
         return false;
@@ -728,7 +723,7 @@ fn complete_fine(
         }
         _ => return false,
     }
-    finish(main, none, (mix.a, mix.b), move_, out)
+    finish(main, placement, (mix.a, mix.b), move_, out)
 }
 
 /// Builds the schedule of `main` less `placement` into `out`, sealed (`false` if its phases do
