@@ -574,8 +574,11 @@ const MAX_WIDE_CHECKS: u32 = 8;
 /// cycles whose ramps are `a` and `b`: `rest = w·k` with `k > w`, the span within the reach
 /// of [`reach`] (`k ≤ total − 2a − 1 + w`), and `w ≤ a·b` (see [`Tries::wide_pairs`]).
 fn wide_may_take(rest: u64, total: u64, a: u64, b: u64) -> bool {
-    // In 32 bits: `rest < a·b < 2^14` and `total < 2^9` (see [`plan`]); a 64-bit division is
-    // a library call on a Cortex-M4, a 32-bit one an instruction.
+    // In 32 bits: the rest is at most `max(a·b, reach) < 2^15` and `total < 2^9` (see
+    // [`plan`]); a 64-bit division is a library call on a Cortex-M4, a 32-bit one an
+    // instruction. (The same test as [`Tries::wide_pairs`]' for each width: a function both
+    // call measured up to +1,000 Cortex-M4 instructions on moves from fractional positions,
+    // through `main_move`'s code.)
     let (rest, longest, area) = (rest as u32, (total - 2 * a) as u32, (a * b) as u32);
     (WIDEST as u32 + 1..=WIDEST_ALONE as u32).any(|w| {
         let k = rest / w;
