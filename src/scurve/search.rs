@@ -35,6 +35,26 @@ struct Candidate {
     c: u64,
 }
 
+/// A shape's two candidates ([`Shape::candidates`]).
+struct Candidates {
+    /// The mix that meets the shape's velocity exactly or from below.
+    under: Option<Candidate>,
+    /// The mix from above with a velocity notch (`None` where `under` meets it exactly).
+    over: Option<Candidate>,
+}
+
+impl Candidates {
+    /// Both, the faster (the earlier phase V) first: as references, so that ordering them
+    /// copies nothing (an array of the two candidates by value cost two copies of ~200 bytes,
+    /// ~450 Cortex-M4 instructions, each time a later shape was looked at).
+    fn faster_first(&self) -> [&Option<Candidate>; 2] {
+        match (&self.under, &self.over) {
+            (Some(u), Some(o)) if o.c < u.c => [&self.over, &self.under],
+            _ => [&self.under, &self.over],
+        }
+    }
+}
+
 /// What decides whether [`complete`] can fit a candidate's remainder: its units (as the ramps
 /// `(a, b)` and counts of the mix written with the longest ramps its units have, so two mixes
 /// of the same units compare equal), phase V's cycle `c` and the velocity notch. Adjacent
@@ -154,7 +174,8 @@ fn shapes(distance: u64, limits: Limits64, found: &mut [Shape; MAX_SHAPES]) -> u
     // once, when first needed.
     let mut at_velocity = None;
     // The floor and the ceiling of a* (both 1 when a* < 1).
-    let firsts = if a0 == 0 { 1..=1 } else { a0..=a0 + 1 };
+    // (An exclusive range: an inclusive one's iteration costs a test more each step.)
+    let firsts = if a0 == 0 { 1..2 } else { a0..a0 + 2 };
     for a in firsts {
         // a ≤ √(2^46) + 1, so jerk·a < 2^55.
         let peak = (jerk * a).min(acceleration);
@@ -172,17 +193,18 @@ fn shapes(distance: u64, limits: Limits64, found: &mut [Shape; MAX_SHAPES]) -> u
             u64::try_from(square.isqrt()).unwrap_or(u64::MAX)
         };
         let no_cruise = (root - a) / 2;
-        let mut tried = [0u64; 4];
-        for (i, b) in [
+        let seconds = [
             no_cruise,
             no_cruise + 1,
             to_velocity,
             no_cruise.saturating_sub(1),
-        ]
-        .into_iter()
-        .enumerate()
-        {
-            let b = b.clamp(a, to_velocity);
+        ];
+        let mut tried = [0u64; 4];
+        // Indexed: iterating the array (by value or by reference) cost ~110 more Cortex-M4
+        // instructions a move, ~1 % of the mean plan (random moves 100,000–100,999).
+        #[allow(clippy::needless_range_loop)]
+        for i in 0..seconds.len() {
+            let b = seconds[i].clamp(a, to_velocity);
             if tried[..i].contains(&b) {
                 continue;
             }
@@ -243,18 +265,17 @@ fn shapes(distance: u64, limits: Limits64, found: &mut [Shape; MAX_SHAPES]) -> u
 
 impl Shape {
     /// The mix that meets the velocity from below, and — unless it meets it exactly — the one
-    /// from above with a velocity notch; the faster first.
-    fn candidates(&self, distance: u64, limits: Limits64) -> [Option<Candidate>; 2] {
-        let under = self.candidate(true, distance, limits);
-        let over = match under {
-            Some(c) if c.mix.velocity == self.target => None,
-            _ => self.candidate(false, distance, limits),
+    /// from above with a velocity notch.
+    fn candidates(&self, distance: u64, limits: Limits64) -> Candidates {
+        // Each written where it is kept, not moved there (a move copies it).
+        let mut candidates = Candidates {
+            under: self.candidate(true, distance, limits),
+            over: None,
         };
-        if matches!((&under, &over), (Some(u), Some(o)) if o.c < u.c) {
-            [over, under]
-        } else {
-            [under, over]
+        if !matches!(&candidates.under, Some(c) if c.mix.velocity == self.target) {
+            candidates.over = self.candidate(false, distance, limits);
         }
+        candidates
     }
 
     /// The shape with the unit mix that meets its velocity exactly or from below (`under`), or
@@ -343,7 +364,7 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
         with_unit: true,
         ..move_
     };
-    if around(&move_, out) {
+    if around(&move_, &found[..len], out) {
         if out.plan.total > fastest.saturating_add(3) {
             keep_if_faster(out, |aside| fastest_fit(&with_unit, &found[..len], aside));
         }
@@ -374,20 +395,9 @@ fn fastest_fit(move_: &Move, found: &[Shape], out: &mut Schedule) -> bool {
     let mut scratch = Scratch::default();
     'shapes: for (i, shape) in found[..len].iter().enumerate() {
         // The mix that meets the velocity from below, and — unless it meets it exactly — the
-        // one from above with a velocity notch; the faster first (as [`Shape::candidates`],
-        // without copying them into an array).
-        let under = shape.candidate(true, distance, limits);
-        let over = match under {
-            Some(c) if c.mix.velocity == shape.target => None,
-            _ => shape.candidate(false, distance, limits),
-        };
-        let over_first = matches!((&under, &over), (Some(u), Some(o)) if o.c < u.c);
-        let order = if over_first {
-            [&over, &under]
-        } else {
-            [&under, &over]
-        };
-        for (k, candidate) in order.into_iter().enumerate() {
+        // one from above with a velocity notch; the faster first.
+        let candidates = shape.candidates(distance, limits);
+        for (k, candidate) in candidates.faster_first().into_iter().enumerate() {
             let Some(candidate) = candidate else {
                 continue;
             };
@@ -418,7 +428,8 @@ fn fastest_fit(move_: &Move, found: &[Shape], out: &mut Schedule) -> bool {
                     if later.cycles > total {
                         break;
                     }
-                    for (m, early) in later.candidates(distance, limits).iter().enumerate() {
+                    let candidates = later.candidates(distance, limits);
+                    for (m, early) in candidates.faster_first().into_iter().enumerate() {
                         let bit = 1 << (2 * j + m);
                         let Some(early) = early else {
                             continue;
@@ -752,12 +763,11 @@ fn finish(
 /// first, at most [`AROUND_TRIES`] of them: where the shapes of [`shapes`] leave a remainder no
 /// notch pairs can take — mostly with a jerk of one or two raw units, where no fine units can be
 /// kept aside — another pair of ramps often divides the distance better. Before the one-cycle
-/// ramps, whose moves are exact but far longer.
-fn around(move_: &Move, out: &mut Schedule) -> bool {
+/// ramps, whose moves are exact but far longer. `found`: the move's [`shapes`], found by the
+/// search already (their least first ramp is the optimum's, rounded down).
+fn around(move_: &Move, found: &[Shape], out: &mut Schedule) -> bool {
     let (distance, limits) = (move_.distance, move_.limits);
-    let mut found = [Shape::default(); MAX_SHAPES];
-    let len = shapes(distance, limits, &mut found);
-    let a0 = found[..len].iter().map(|s| s.a).min().unwrap_or(1);
+    let a0 = found.iter().map(|s| s.a).min().unwrap_or(1);
     let mut wide = [Shape::default(); AROUND_SHAPES];
     let mut count = 0;
     for a in a0.saturating_sub(3).max(1)..=a0 + 3 {
