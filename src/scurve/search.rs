@@ -97,23 +97,30 @@ impl Attempt {
     }
 
     fn is(&self, other: &Self) -> bool {
-        self.a == other.a
+        // Phase V's cycle first: the attempts kept mostly differ there.
+        self.c == other.c
+            && self.a == other.a
             && self.b == other.b
             && self.counts[0] == other.counts[0]
             && self.counts[1] == other.counts[1]
-            && self.c == other.c
             && self.notch == other.notch
     }
 }
 
-/// The last two attempts whose remainder did not fit: the duplicates come from neighbouring
-/// shapes, each tried at two cruise lengths in turn.
+/// The last attempts whose remainder did not fit: the duplicates come from neighbouring
+/// shapes, each tried at two cruise lengths in turn. Four: with one unit of jerk, the unit
+/// `(a, b)` of the first shape comes back as the second ramp's shorter kind in the third
+/// shape `(a + 1, b)`, two shapes later, after three attempts (random move 275055: its
+/// remainder tried a second time, ~2,100 Cortex-M4 instructions, where two were kept).
 #[derive(Debug, Default)]
 struct Failed {
     /// `None` until written: only the tags are cleared when a search begins.
-    attempts: [Option<Attempt>; 2],
+    attempts: [Option<Attempt>; FAILED_KEPT],
     next: usize,
 }
+
+/// How many failed attempts [`Failed`] keeps.
+const FAILED_KEPT: usize = 4;
 
 impl Failed {
     fn contains(&self, attempt: &Attempt) -> bool {
@@ -124,7 +131,7 @@ impl Failed {
     }
 
     fn push(&mut self, attempt: Attempt) {
-        self.attempts[self.next % 2] = Some(attempt);
+        self.attempts[self.next % FAILED_KEPT] = Some(attempt);
         self.next += 1;
     }
 }
