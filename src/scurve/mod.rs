@@ -19,6 +19,8 @@
 //! - [`pure_jerk`]: moves where only the jerk binds (a few dozen cycles with a jerk of a few raw
 //!   units, mostly what a stop leaves), whose notch pairs go wherever the jerk has room;
 //! - [`roots`]: the integer square and cube roots the search starts from;
+//! - [`products`]: 64-bit products that take one 32-bit multiplication where both factors
+//!   fit (most of the planner's), checked as `u64::checked_mul` is;
 //! - [`schedule`]: the sorted jerk changes, built once for the winner, and the pass that finds
 //!   its peaks;
 //! - [`stop`]: the jerk-limited smooth stop.
@@ -59,6 +61,7 @@
 //! most 33 Cortex-M4 instructions (36 on the cycles after an abrupt stop), 18 on x86.
 
 mod predict;
+mod products;
 mod pure_jerk;
 mod remainder;
 mod roots;

@@ -39,6 +39,7 @@
 //! checked per pass and two passes, and at most [`MAX_WIDE`] main moves a count and
 //! [`MAX_WIDE_CHECKS`] candidates in all with a wide pair.
 
+use super::products::product;
 use super::remainder::{Notch, Placement};
 use super::roots::cube_root;
 use super::schedule::{Limits64, Schedule};
@@ -202,10 +203,9 @@ pub(super) fn improve(
 #[inline]
 fn within_bound(total: u64, scaled: u64, jerk: u64) -> bool {
     let least = total.saturating_sub(3);
-    least
-        .checked_mul(least)
-        .and_then(|square| square.checked_mul(least))
-        .and_then(|cube| cube.checked_mul(jerk))
+    product(least, least)
+        .and_then(|square| product(square, least))
+        .and_then(|cube| product(cube, jerk))
         .is_some_and(|needed| needed <= scaled)
 }
 
@@ -231,7 +231,7 @@ fn scaled_distance(distance: u64, jerk: u64) -> Option<u64> {
     // `32·D < LONGEST³·J` exactly when `D < J·LONGEST³/32` (`LONGEST³` is a multiple of 32):
     // one product to test, and `32·D < 2^64` after it (`J < 2^32`, so `D < 2^52`).
     const _: () = assert!(LONGEST * LONGEST * LONGEST % 32 == 0);
-    let most = jerk.checked_mul(LONGEST * LONGEST * LONGEST / 32)?;
+    let most = product(jerk, LONGEST * LONGEST * LONGEST / 32)?;
     (distance < most).then(|| distance * 32)
 }
 
@@ -245,12 +245,11 @@ fn optimum_floor(scaled: u64, distance: u64, limits: Limits64) -> Option<u64> {
     // acceleration required below exceeds `J·∛(32·D/J)/4 = ∛(D·J²/2)`, so `2·A³ > D·J²` (most
     // moves whose plan is long for their distance leave here: they reach the acceleration limit).
     let acceleration = limits.acceleration;
-    if let Some(cube) = acceleration
-        .checked_mul(acceleration)
-        .and_then(|square| square.checked_mul(acceleration))
+    if let Some(cube) = product(acceleration, acceleration)
+        .and_then(|square| product(square, acceleration))
         .and_then(|cube| cube.checked_mul(2))
     {
-        let needed = distance.checked_mul(jerk).and_then(|d| d.checked_mul(jerk));
+        let needed = product(distance, jerk).and_then(|d| product(d, jerk));
         if needed.is_none_or(|needed| needed >= cube) {
             return None;
         }
@@ -267,8 +266,8 @@ fn optimum_floor(scaled: u64, distance: u64, limits: Limits64) -> Option<u64> {
     }
     let floor = cube_root(div(scaled, jerk));
     let cycles = floor + COUNTS;
-    let peak_acceleration = jerk.checked_mul(cycles / 4)?.checked_add(2)?;
-    let peak_velocity = jerk.checked_mul(cycles * cycles / 16)?;
+    let peak_acceleration = product(jerk, cycles / 4)?.checked_add(2)?;
+    let peak_velocity = product(jerk, cycles * cycles / 16)?;
     (peak_acceleration <= limits.acceleration && peak_velocity <= limits.velocity).then_some(floor)
 }
 
@@ -297,7 +296,7 @@ fn plan(
     let narrow = u32::try_from(distance).is_ok()
         && most
             .checked_mul(most * most)
-            .and_then(|cube| cube.checked_mul(limits.jerk))
+            .and_then(|cube| product(cube, limits.jerk))
             .is_some_and(|product| product <= u64::from(u32::MAX));
     let mut tries = Tries {
         distance,

@@ -14,6 +14,7 @@
 //! remainder `E` in their range: `w·k₁ + (w + 1)·k₂ = E` is solved by
 //! `k₁ ≡ −E (mod w + 1)` ([`solve_spans`]), because `w ≡ −1` is its own inverse modulo `w + 1`.
 
+use super::products::{product, saturating_product};
 use super::shape::{Bounds, MainMove};
 use crate::division::{ceil_div, div, div_ceil, floor_div};
 
@@ -484,37 +485,6 @@ fn one_pair(
     (span <= range.1 && span > width).then_some((span, q))
 }
 
-/// `a·b`, or `None` past 2^64 (`u64::checked_mul`); on a 32-bit core [`narrow_product`].
-#[inline(always)]
-fn product(a: u64, b: u64) -> Option<u64> {
-    if cfg!(target_pointer_width = "64") {
-        a.checked_mul(b)
-    } else {
-        narrow_product(a, b)
-    }
-}
-
-/// [`product`] on a 32-bit core: one `umull` where both fit 32 bits (cycles, spans, widths and
-/// most remainders), where `u64::checked_mul` forms and checks the whole 128-bit product (a few
-/// dozen instructions on a Cortex-M4, in the remainder's innermost loops: 79 → 74 of CI's
-/// 3,000 moves from fractional positions over SPEC §16's 20,000, the same plans). Not shared
-/// with the trapezoid's landing, whose `saturating_product` is the plain checked product: its
-/// factors mostly pass 2^32, and this test cost its worst set-up 17,177 → 18,052.
-#[inline(always)]
-fn narrow_product(a: u64, b: u64) -> Option<u64> {
-    if (a | b) >> 32 == 0 {
-        Some(a * b)
-    } else {
-        a.checked_mul(b)
-    }
-}
-
-/// `a·b`, or `u64::MAX` past it ([`product`]).
-#[inline(always)]
-fn saturating_product(a: u64, b: u64) -> u64 {
-    product(a, b).unwrap_or(u64::MAX)
-}
-
 /// How many widths from one below the estimate [`take`] tries: the estimate and the one below.
 /// Over 200,000 random moves, the widths one and two above the estimate took 66 of the 62,550
 /// remainders that two pairs near the estimate took; without them no plan of the `planning`
@@ -773,16 +743,6 @@ mod tests {
 
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(4_000))]
-
-        /// The 32-bit core's product is `checked_mul`'s, on both sides of 2^32 and of overflow.
-        #[test]
-        fn the_narrow_product_is_the_checked_product(
-            a_bits in 0u32..64, a_low in any::<u64>(), b_bits in 0u32..64, b_low in any::<u64>(),
-        ) {
-            let (a, b) = (a_low >> a_bits, b_low >> b_bits);
-            prop_assert_eq!(narrow_product(a, b), a.checked_mul(b));
-            prop_assert_eq!(saturating_product(a, b), a.saturating_mul(b));
-        }
 
         /// What `Placement::fits` relies on to skip a pair's own part: its four impulses fall on
         /// four cycles, and its dip is one unit deep on its first and its last cycle — checked

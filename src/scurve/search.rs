@@ -17,6 +17,7 @@
 //! the remainder plus one unit's area ([`Move::with_unit`]), which closes the gaps between what
 //! two pairs take when the jerk leaves a single unit.
 
+use super::products::{product, saturating_product};
 use super::pure_jerk;
 use super::remainder::{self, place_velocity_notch, Placement};
 use super::roots::{cube_root, square_root};
@@ -162,16 +163,15 @@ fn shapes(distance: u64, limits: Limits64, found: &mut [Shape; MAX_SHAPES]) -> u
     // a* = min(⌊A/J⌋, ⌊√⌊V/J⌋⌋, ⌊∛⌊D/2J⌋⌋); a root is taken only when it can be the least:
     // ⌊√⌊V/J⌋⌋ ≥ m ⇔ V ≥ m²·J and ⌊∛⌊D/2J⌋⌋ ≥ m ⇔ D ≥ 2J·m³, a multiplication each.
     let mut a0 = div(acceleration, jerk);
-    if a0
-        .checked_mul(a0)
-        .and_then(|s| s.checked_mul(jerk))
+    if product(a0, a0)
+        .and_then(|s| product(s, jerk))
         .is_none_or(|s| s > velocity)
     {
         a0 = a0.min(square_root(div(velocity, jerk)));
     }
-    let cube = a0.checked_mul(a0).and_then(|s| s.checked_mul(a0));
+    let cube = product(a0, a0).and_then(|s| product(s, a0));
     if cube
-        .and_then(|c| c.checked_mul(2 * jerk))
+        .and_then(|c| product(c, 2 * jerk))
         .is_none_or(|c| c > distance)
     {
         a0 = a0.min(cube_root(div(distance, 2 * jerk)));
@@ -222,10 +222,10 @@ fn shapes(distance: u64, limits: Limits64, found: &mut [Shape; MAX_SHAPES]) -> u
             let aim = if b >= to_velocity {
                 velocity
             } else {
-                peak.saturating_mul(b)
+                saturating_product(peak, b)
             };
             let ramps = a + b;
-            let (target, cruise) = match aim.checked_mul(ramps) {
+            let (target, cruise) = match product(aim, ramps) {
                 Some(covered) if covered <= distance => {
                     let cruise = if aim == velocity {
                         *at_velocity.get_or_insert_with(|| div_ceil(distance, velocity))
@@ -574,8 +574,7 @@ fn early_units(mix: &Mix, c: u64, mut over: u64) -> ([u64; 4], u64) {
 /// The distance `mix` covers with phase V from cycle `c` and a velocity notch of `notch` units
 /// (which takes `notch·(c − 1)`): `c·velocity − notch·(c − 1)`, or `None` past 64 bits.
 fn covered(mix: &Mix, c: u64, notch: u64) -> Option<u64> {
-    c.checked_mul(mix.velocity)?
-        .checked_sub(notch.checked_mul(c - 1)?)
+    product(c, mix.velocity)?.checked_sub(product(notch, c - 1)?)
 }
 
 /// The plan of `candidate` with phase V from cycle `c`, into `out`, if its remainder fits.
@@ -778,15 +777,11 @@ fn around(move_: &Move, found: &[Shape], out: &mut Schedule) -> bool {
     let mut wide = [Shape::default(); AROUND_SHAPES];
     let mut count = 0;
     for a in a0.saturating_sub(3).max(1)..=a0 + 3 {
-        let Some(peak) = limits
-            .jerk
-            .checked_mul(a)
-            .map(|p| p.min(limits.acceleration))
-        else {
+        let Some(peak) = product(limits.jerk, a).map(|p| p.min(limits.acceleration)) else {
             continue;
         };
         for b in a..=a + 6 {
-            let Some(aim) = peak.checked_mul(b).map(|v| v.min(limits.velocity)) else {
+            let Some(aim) = product(peak, b).map(|v| v.min(limits.velocity)) else {
                 continue;
             };
             let ramps = a + b;

@@ -15,6 +15,7 @@
 //! `(a, b)`, `(a, b − 1)`, `(a − 1, b)` and `(a − 1, b − 1)`, reaches the limits to the raw unit
 //! ([`Mix::solve`]).
 
+use super::products::product;
 use crate::division::{div, div_ceil, div_rem, rem};
 
 /// One group of identical units: `count · tb(a, b, c)`.
@@ -296,7 +297,7 @@ impl Mix {
             return None;
         }
         // jerk < 2^31 and a < 2^24, so no product here leaves 64 bits; checked all the same.
-        let full_height = jerk.checked_mul(a)?;
+        let full_height = product(jerk, a)?;
         let peak = full_height.min(acceleration);
         // Units with the shorter first ramp; with a = 1 they are empty (a − 1 = 0). More than
         // the jerk's units (`a > ⌊A/J⌋ + 1`, ramps [`super::search`]'s `around` tries): even
@@ -307,7 +308,7 @@ impl Mix {
         } else {
             (jerk.checked_sub(short)?, short)
         };
-        let highest = peak.checked_mul(b)?;
+        let highest = product(peak, b)?;
         let lowering = highest.checked_sub(velocity)?;
         // A unit (a, b − 1) with b = a would have its ramps the other way round (its peak
         // acceleration is a − 1): second ramps are shortened only with b > a.
@@ -402,7 +403,7 @@ fn by_shorter_first_ramps(
         rem(div(lowering, g), modulus) * rem(inverse, modulus),
         modulus,
     );
-    let x = div(lowering.checked_sub(b.checked_mul(z)?)?, a);
+    let x = div(lowering.checked_sub(product(b, z)?)?, a);
     (x <= long_room && x + z <= long).then_some((x, 0, z))
 }
 
@@ -463,8 +464,8 @@ fn split(lowering: u64, a: u64, long: u64, short: u64) -> Option<(u64, u64)> {
         Some(over) if over > 0 => div_ceil(over, a - 1),
         _ => 0,
     };
-    let y = y0.checked_add(a.checked_mul(t)?)?;
-    let x = x0.checked_sub((a - 1).checked_mul(t)?)?;
+    let y = y0.checked_add(product(a, t)?)?;
+    let x = x0.checked_sub(product(a - 1, t)?)?;
     (y <= short && x <= long).then_some((x, y))
 }
 
