@@ -337,23 +337,23 @@ pub(super) fn search(distance: u64, direction: i64, limits: Limits64, out: &mut 
     // tried first and kept unless a shape is faster: there the shapes' remainders mostly do not
     // fit, and each failed attempt costs thousands of Cortex-M4 instructions (a move of 15
     // cycles with a huge jerk took 28,756, now 11,606). In other short moves they are tried if
-    // no shape fit, or if only a slower one did (planned aside, the faster kept).
+    // no shape fit, or if only a slower one did (the faster kept). Either way the fine units'
+    // main move is found first and its schedule built only if it is kept: building the plan
+    // that loses aside and copying the winner over cost a second build, a clear and a copy
+    // (random move 881545, 19 cycles, whose shape beat its fine units: 22,632 → 19,813
+    // Cortex-M4 instructions).
     let short = fastest < SHORT_MOVE;
-    let planned =
-        if limits.jerk >= FINE_FIRST_JERK && fastest < FINE_FIRST && with_fine_units(&move_, out) {
-            if out.plan.total > fastest {
-                keep_if_faster(out, |shaped| fastest_fit(&move_, &found[..len], shaped));
-            }
-            true
-        } else if fastest_fit(&move_, &found[..len], out) {
-            if limits.jerk > 2 && short && out.plan.total > fastest + 1 {
-                keep_if_faster(out, |fine| with_fine_units(&move_, fine));
-            }
-            true
-        } else {
-            // Nothing planned: the fine units straight into `out`.
-            limits.jerk > 2 && with_fine_units(&move_, out)
-        };
+    let planned = if limits.jerk >= FINE_FIRST_JERK
+        && fastest < FINE_FIRST
+        && fine_unless_faster_shape(&move_, &found[..len], fastest, out)
+    {
+        true
+    } else if fastest_fit(&move_, &found[..len], out) {
+        !(limits.jerk > 2 && short && out.plan.total > fastest + 1) || fine_if_faster(&move_, out)
+    } else {
+        // Nothing planned: the fine units straight into `out`.
+        limits.jerk > 2 && with_fine_units(&move_, out)
+    };
     // Where only the jerk binds and the plan is more than three cycles over the optimum, or
     // missing: notch pairs wherever the jerk has room ([`pure_jerk`]); it keeps a plan it cannot
     // better.
@@ -516,8 +516,51 @@ const FINE_FIRST: u64 = 24;
 const FINE_FIRST_JERK: u64 = 1 << 16;
 
 /// The plan with two units of jerk, acceleration and velocity kept aside for two fine units,
-/// fastest shape first ([`complete_fine`]).
+/// fastest shape first ([`fine_main_move`]), into `out`.
 fn with_fine_units(move_: &Move, out: &mut Schedule) -> bool {
+    let mut scratch = Scratch::default();
+    fine_main(move_, &mut scratch)
+        .is_some_and(|ramps| finish(&scratch.main, &scratch.placement, ramps, move_, out))
+}
+
+/// The fine units' plan ([`with_fine_units`]) into `out` unless a shape's ([`fastest_fit`],
+/// planned into `out` first where it may be faster: the fine units' main move is longer than
+/// the `fastest` shape) is faster; `false` (`out` untouched) if the fine units have no plan.
+/// Where the shape is faster, the fine units' schedule is never built.
+fn fine_unless_faster_shape(
+    move_: &Move,
+    found: &[Shape],
+    fastest: u64,
+    out: &mut Schedule,
+) -> bool {
+    let mut scratch = Scratch::default();
+    let Some(ramps) = fine_main(move_, &mut scratch) else {
+        return false;
+    };
+    let total = scratch.main.total();
+    if total > fastest && fastest_fit(move_, found, out) && out.plan.total < total {
+        return true;
+    }
+    // `finish` cannot fail here: `fine_main` kept only a main move it can build.
+    finish(&scratch.main, &scratch.placement, ramps, move_, out)
+}
+
+/// Replaces the plan in `out` with the fine units' ([`with_fine_units`]) if theirs is shorter;
+/// their schedule is built only then, over the other (`fine_main` kept only a main move it can
+/// build). Returns whether `out` holds a plan.
+fn fine_if_faster(move_: &Move, out: &mut Schedule) -> bool {
+    let mut scratch = Scratch::default();
+    match fine_main(move_, &mut scratch) {
+        Some(ramps) if scratch.main.total() < out.plan.total => {
+            finish(&scratch.main, &scratch.placement, ramps, move_, out)
+        }
+        _ => true,
+    }
+}
+
+/// The fine units' main move ([`with_fine_units`]), written into `scratch`: the ramps `(a, b)`
+/// its schedule is built with, or `None` if no shape has one.
+fn fine_main(move_: &Move, scratch: &mut Scratch) -> Option<(u64, u64)> {
     let limits = move_.limits;
     let spare = Limits64 {
         jerk: limits.jerk - 2,
@@ -528,18 +571,19 @@ fn with_fine_units(move_: &Move, out: &mut Schedule) -> bool {
     let len = shapes(move_.distance, spare, &mut found);
     // Each attempt's main move written over the last's, as [`complete`]'s (its placement
     // stays empty: fine units take the whole remainder).
-    let mut scratch = Scratch::default();
     for shape in &found[..len] {
-        let Some(candidate) = shape.candidate(true, move_.distance, spare) else {
+        // Looked at where it was returned, not moved out of the `Option` (a copy).
+        let candidate = shape.candidate(true, move_.distance, spare);
+        let Some(candidate) = &candidate else {
             continue;
         };
         for extra in 0..2 {
-            if complete_fine(&candidate, candidate.c + extra, move_, &mut scratch, out) {
-                return true;
+            if fine_main_move(candidate, candidate.c + extra, move_, scratch) {
+                return Some((candidate.mix.a, candidate.mix.b));
             }
         }
     }
-    false
+    None
 }
 
 /// What is being planned: the distance (2^-32 counts), the direction (±1), the limits.
@@ -657,7 +701,7 @@ fn complete(
     }
 }
 
-/// What each attempt of [`complete`] (or [`complete_fine`], which places no pairs) writes over
+/// What each attempt of [`complete`] (or [`fine_main_move`], which places no pairs) writes over
 /// the last's: its main move and its notch pairs (408 bytes, which a fresh pair per attempt
 /// cleared: about an instruction a byte on a Cortex-M4; 275055 of the random moves, five
 /// attempts: 24,520 → 23,703 instructions).
@@ -695,18 +739,14 @@ fn complete_once(
     false
 }
 
-/// As [`complete`], for a mix planned with two units of jerk to spare: one unit more than fits
+/// As [`complete`]'s main move, for a mix planned with two units of jerk to spare: one unit more than fits
 /// ends its cruise early, and one or two fine units `tb(1, 1, x)` (`x` raw units each,
 /// `2 ≤ x ≤ total − 2`) add back the difference.
-/// `scratch`'s main move is written over; its placement, never written, stays empty.
-fn complete_fine(
-    candidate: &Candidate,
-    c: u64,
-    move_: &Move,
-    scratch: &mut Scratch,
-    out: &mut Schedule,
-) -> bool {
-    let Scratch { main, placement } = scratch;
+/// Writes that main move over `scratch`'s (its placement, never written, stays empty); `false`
+/// if there is none, or none whose schedule [`finish`] can build (phase V's cruise under both
+/// ramps twice), so that the fine units' main move is known to land before it is built.
+fn fine_main_move(candidate: &Candidate, c: u64, move_: &Move, scratch: &mut Scratch) -> bool {
+    let main = &mut scratch.main;
     let mix = &candidate.mix;
     let Some(over) = covered(mix, c, 0).and_then(|d| d.checked_sub(move_.distance)) else {
         return false;
@@ -740,7 +780,8 @@ fn complete_fine(
         }
         _ => return false,
     }
-    finish(main, placement, (mix.a, mix.b), move_, out)
+    // What [`Schedule::build`] requires of it.
+    main.total() >= 2 * (mix.a + mix.b)
 }
 
 /// Builds the schedule of `main` less `placement` into `out`, sealed (`false` if its phases do
@@ -805,7 +846,8 @@ fn around(move_: &Move, found: &[Shape], out: &mut Schedule) -> bool {
     let mut failed = Failed::default();
     let mut scratch = Scratch::default();
     for shape in wide.iter() {
-        let Some(candidate) = shape.candidate(true, distance, limits) else {
+        let candidate = shape.candidate(true, distance, limits);
+        let Some(candidate) = &candidate else {
             continue;
         };
         for extra in 0..2 {
@@ -814,7 +856,7 @@ fn around(move_: &Move, found: &[Shape], out: &mut Schedule) -> bool {
             }
             tries += 1;
             if complete_once(
-                &candidate,
+                candidate,
                 candidate.c + extra,
                 move_,
                 out,
