@@ -45,8 +45,8 @@
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
 //! checked). Measured (see the README for the commands): 8,338 Cortex-M4 instructions median,
 //! 14,718 at worst over the first 1,000 random moves, 15,823 over 5,000, 16,300 over 20,000,
-//! 18,244 over 100,000 and 19,911 over the next 500,000, but 4 of the 500,000 after them over
-//! SPEC §16's 20,000 (worst 22,632; three with a jerk of one raw unit, whose first shapes'
+//! 18,244 over 100,000 and 19,914 over the next 500,000, but 3 of the 500,000 after them over
+//! SPEC §16's 20,000 (worst 20,360; each with a jerk of one raw unit, whose first shapes'
 //! remainders do not fit); on the x86 development machine
 //! a few hundred nanoseconds median, under about 2 µs at worst.
 //! Tiny moves with a jerk of one or two raw units are read from a table of their fastest plans
