@@ -979,4 +979,38 @@ mod tests {
             }
         }
     }
+
+    /// Random move 275055's attempts (a jerk of one raw unit): its first shape's unit
+    /// `(17439, 17440)` fails at phase V's cycle `c` and `c + 1`, the shape `(17439, 17439)`
+    /// fails, and the third shape `(17440, 17440)` writes that first unit as its kind 2 — the
+    /// same attempt, which [`Failed`] must still hold after the two in between (two slots had
+    /// forgotten it, and its remainder was tried again), and forgets once four more failed.
+    #[test]
+    fn a_single_unit_met_again_two_shapes_later_is_known_to_fail() {
+        let unit = |a, b, counts| Candidate {
+            mix: Mix {
+                a,
+                b,
+                counts,
+                acceleration: 0,
+                velocity: 0,
+            },
+            notch: 0,
+            c: 34_881,
+        };
+        let first = unit(17_439, 17_440, [1, 0, 0, 0]);
+        let mut failed = Failed::default();
+        failed.push(Attempt::of(&first, first.c));
+        failed.push(Attempt::of(&first, first.c + 1));
+        let second = unit(17_439, 17_439, [1, 0, 0, 0]);
+        failed.push(Attempt::of(&second, 34_883));
+        let again = unit(17_440, 17_440, [0, 0, 1, 0]);
+        assert!(failed.contains(&Attempt::of(&again, again.c)));
+        // Another unit's attempt at the same cycle is not this one.
+        assert!(!failed.contains(&Attempt::of(&unit(17_440, 17_440, [1, 0, 0, 0]), again.c)));
+        for c in 1..=FAILED_KEPT as u64 {
+            failed.push(Attempt::of(&second, c));
+        }
+        assert!(!failed.contains(&Attempt::of(&again, again.c)));
+    }
 }
