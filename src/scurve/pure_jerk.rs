@@ -297,7 +297,7 @@ fn plan(
         && most
             .checked_mul(most * most)
             .and_then(|cube| product(cube, limits.jerk))
-            .is_some_and(|product| product <= u64::from(u32::MAX));
+            .is_some_and(|most_product| most_product <= u64::from(u32::MAX));
     let mut tries = Tries {
         distance,
         direction,

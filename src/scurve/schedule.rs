@@ -536,9 +536,16 @@ impl Schedule {
         self.runs[..runs].iter().map(|run| (run.cycles(), run.jerk))
     }
 
+    /// The cruise (phase IV) [`Self::build`] reports for a move of `total` cycles whose main
+    /// units' ramps are `(a, b)`: `None` if the move is shorter than its ramps, the one case in
+    /// which it builds nothing (a planner that builds last asks this first).
+    pub fn cruise(total: u64, (a, b): (u64, u64)) -> Option<u64> {
+        total.checked_sub(2 * (a + b))
+    }
+
     /// Makes this the schedule of `main` less the notch pairs of `placement`, in the direction
     /// `direction` (±1), its main units' ramps `(a, b)`, sealed ([`Self::seal`]); `false` (and
-    /// nothing built) if the move is shorter than its ramps.
+    /// nothing built) if the move is shorter than its ramps ([`Self::cruise`]).
     pub fn build(
         &mut self,
         main: &MainMove,
@@ -547,7 +554,7 @@ impl Schedule {
         (a, b): (u64, u64),
     ) -> bool {
         let total = main.total();
-        let Some(cruise) = total.checked_sub(2 * (a + b)) else {
+        let Some(cruise) = Self::cruise(total, (a, b)) else {
             return false;
         };
         // Written in place, field by field (a summary built apart would be copied in).

@@ -739,12 +739,12 @@ fn complete_once(
     false
 }
 
-/// As [`complete`]'s main move, for a mix planned with two units of jerk to spare: one unit more than fits
-/// ends its cruise early, and one or two fine units `tb(1, 1, x)` (`x` raw units each,
-/// `2 ≤ x ≤ total − 2`) add back the difference.
-/// Writes that main move over `scratch`'s (its placement, never written, stays empty); `false`
-/// if there is none, or none whose schedule [`finish`] can build (phase V's cruise under both
-/// ramps twice), so that the fine units' main move is known to land before it is built.
+/// As [`complete`]'s main move, for a mix planned with two units of jerk to spare: one unit
+/// more than fits ends its cruise early, and one or two fine units `tb(1, 1, x)` (`x` raw units
+/// each, `2 ≤ x ≤ total − 2`) add back the difference. Writes that main move over `scratch`'s
+/// (its placement, never written, stays empty); `false` if there is none, or none whose
+/// schedule [`finish`] can build ([`Schedule::cruise`]), so that the fine units' main move is
+/// known to land before it is built.
 fn fine_main_move(candidate: &Candidate, c: u64, move_: &Move, scratch: &mut Scratch) -> bool {
     let main = &mut scratch.main;
     let mix = &candidate.mix;
@@ -781,7 +781,7 @@ fn fine_main_move(candidate: &Candidate, c: u64, move_: &Move, scratch: &mut Scr
         _ => return false,
     }
     // What [`Schedule::build`] requires of it.
-    main.total() >= 2 * (mix.a + mix.b)
+    Schedule::cruise(main.total(), (mix.a, mix.b)).is_some()
 }
 
 /// Builds the schedule of `main` less `placement` into `out`, sealed (`false` if its phases do
