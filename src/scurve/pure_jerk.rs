@@ -1364,8 +1364,13 @@ impl Profile {
                 }
             }
         }
-        // Two pairs: w₁·k₁ + w₂·k₂ = rest, k₁ the first of its interval with the right residue
-        // modulo w₂ (at most w₂ values to look at).
+        // Two pairs: w₁·k₁ + w₂·k₂ = rest, k₁ the first two of its interval with the right
+        // residue modulo w₂ (at most 2·w₂ values to look at): the first alone missed pairs
+        // where it was the width itself or had no starts apart (`tools/ab_plans.sh`: 81 of
+        // 200,000 plans a cycle shorter; moves from fractional positions 102,941 and 80,549
+        // with a jerk of 1, which found no pairs here and went on to the search, 21,730 and
+        // 21,242 → 8,871 and 8,215 Cortex-M4 instructions; up to +350 where every candidate
+        // fails: 127,623, six main moves tried, 19,890 → 20,044).
         // Most pairs of fits cannot take `rest` at all: w₁·k₁ + w₂·k₂ lies in [w₁·lo₁ + w₂·lo₂,
         // w₁·hi₁ + w₂·hi₂]. Rejected by comparisons — all the fits of two widths at once, then
         // all the second width's with one of the first, then one pair of fits — before the
@@ -1399,7 +1404,7 @@ impl Profile {
                         let (lo2, hi2) = second.spans();
                         let from = lo1.max(ceil(rest - w2 * hi2, w1));
                         let to = hi1.min((rest - w2 * lo2).div_euclid(w1));
-                        for k1 in from..=to.min(from + w2 - 1) {
+                        for k1 in from..=to.min(from + 2 * w2 - 1) {
                             let left = rest - w1 * k1;
                             if left % w2 != 0 || k1 == w1 || left / w2 == w2 {
                                 continue;
@@ -2048,6 +2053,29 @@ mod tests {
             );
         }
         assert_eq!(6 * 17 * 24 * 42 + 17 * 24 * 41 - 7 * 37, 119_285);
+    }
+
+    /// Where the first span of the right residue cannot be used — a pair as wide as its span,
+    /// or no starts that keep the pairs' impulses apart — the next of that residue is: these
+    /// moves from fractional positions, each with a jerk of one raw unit, found no pairs for
+    /// any main move that way and went on to the search (21,730 and 21,242 Cortex-M4
+    /// instructions for the first two; 102,941 raw units takes `tb(32, 43, 75)` less pairs of
+    /// widths 1 and 3, spans 4 and 85, where the first span of its residue, 1, is the width).
+    #[test]
+    fn the_next_span_of_a_residue_where_the_first_cannot_be_used() {
+        for distance in [102_941, 80_549, 56_433, 129_425] {
+            let mut out = Schedule::EMPTY;
+            assert!(first(distance, 1, wide(1), &mut out), "{distance}");
+            let replay = out.replay(1, wide(1));
+            assert!(replay.within_limits, "{distance}");
+            assert_eq!(replay.distance, i128::from(distance));
+            let floor = cube_root(32 * distance);
+            assert!(
+                out.plan.total <= floor + 3,
+                "{distance}: {}",
+                out.plan.total
+            );
+        }
     }
 
     /// The first ramp that can cover the distance is the first of `1..=total/4` with a main
