@@ -77,22 +77,55 @@ const RECIPROCAL_ROOTS: [u32; 192] = {
     table
 };
 
-/// `⌊∛n⌋`, bitwise (22 steps).
-pub(super) fn cube_root(mut n: u64) -> u64 {
-    // The root of a 64-bit value is below 2^22: 32 bits hold it, and its product with the next
-    // is one 32 × 32 → 64-bit multiplication (on a Cortex-M4 one instruction, not three).
-    let mut root = 0u32;
-    // From the highest digit (base 8) that is not zero.
-    let mut shift = (63 - n.leading_zeros() as i32) / 3 * 3;
-    while shift >= 0 {
+/// `⌊∛n⌋`, digit by digit in base 8 (at most 22 steps): each step brings the next three bits
+/// of `n` down into the remainder and tries the next bit of the root.
+///
+/// The digits come off the top of `n`, shifted left three bits at a time, not out of `n`
+/// shifted right by an amount that changes with each step: on a Cortex-M4 a 64-bit shift by a
+/// constant is two or three instructions, by a variable amount a branch and six.
+pub(super) fn cube_root(n: u64) -> u64 {
+    if n == 0 {
+        return 0;
+    }
+    // Base-8 digits of `n`: ⌈bits/3⌉.
+    let digits = (66 - n.leading_zeros()) / 3;
+    // The root (below 2^22: 32 bits hold it, and its product with the next is one 32 × 32 →
+    // 64-bit multiplication, on a Cortex-M4 one instruction, not three) and the digits still
+    // to bring down, the next at the top.
+    let (mut root, mut bits, steps) = if digits == 22 {
+        // 64 bits: the first digit is the top bit alone, and it is 1 (1 ≥ 1³): root 1, nothing
+        // left over.
+        (1u32, n << 1, 21)
+    } else {
+        (0, n << (64 - 3 * digits), digits)
+    };
+    // The first twelve steps in 32 bits: the root stays under 2^13 (it starts at 0 or 1), so
+    // `next` under 3·2^26 + 1 and the remainder brought down under 8·next < 2^32.
+    let narrow = steps.min(12);
+    let mut narrow_rest = 0u32;
+    for _ in 0..narrow {
         root *= 2;
-        // (2r + 1)³ − (2r)³ = 3·2r·(2r + 1) + 1, compared at this digit.
-        let next = 3 * (u64::from(root) * u64::from(root + 1)) + 1;
-        if (n >> shift) >= next {
-            n -= next << shift;
+        narrow_rest = (narrow_rest << 3) | (bits >> 61) as u32;
+        bits <<= 3;
+        let next = 3 * (root * (root + 1)) + 1;
+        if narrow_rest >= next {
+            narrow_rest -= next;
             root += 1;
         }
-        shift -= 3;
+    }
+    // Then in 64 bits: what is left stays below 3·(2r)·(2r + 1) + 1 < 2^46 after each step,
+    // so three bits more still fit.
+    let mut rest = u64::from(narrow_rest);
+    for _ in narrow..steps {
+        root *= 2;
+        rest = (rest << 3) | (bits >> 61);
+        bits <<= 3;
+        // (2r + 1)³ − (2r)³ = 3·2r·(2r + 1) + 1.
+        let next = 3 * (u64::from(root) * u64::from(root + 1)) + 1;
+        if rest >= next {
+            rest -= next;
+            root += 1;
+        }
     }
     u64::from(root)
 }
