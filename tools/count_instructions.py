@@ -408,6 +408,31 @@ def measure_planning(probe: Probe, first: int, n: int) -> list[tuple[int, int, t
     return results
 
 
+def measure_hard(probe: Probe, moves: str, sub_counts: str) -> list[int]:
+    """Counts the listed moves: random-move indices (`probe_plan_bits` on move `i`) and moves from
+    fractional positions written `distance:velocity:acceleration:jerk` (`probe_plan_sub_count`),
+    each list comma-separated: the costliest the surveys found (README), held to the planning
+    budget so that a change cannot bring one of them back over it unseen."""
+    print("== planning the surveys' costliest moves")
+    results = []
+    for index in [int(i) for i in moves.split(",") if i]:
+        move = probe.move(index)
+        call = probe.call("probe_plan_bits", *move)
+        if call.u64 == REFUSED:
+            raise ProbeFailure(f"move {index} was refused: {describe_move(move)}")
+        print(f"    move {index}: {call.instructions} instructions; {describe_move(move)}; {call.u64} cycles")
+        results.append(call.instructions)
+    for listed in [m for m in sub_counts.split(",") if m]:
+        distance, velocity, acceleration, jerk = (int(x) for x in listed.split(":"))
+        call = probe.call("probe_plan_sub_count", distance, velocity, acceleration, jerk)
+        if call.u64 == REFUSED:
+            raise ProbeFailure(f"refused: {distance} raw units, V {velocity}, A {acceleration}, J {jerk}")
+        print(f"    {call.instructions} instructions: {distance} raw units, V {velocity}, A {acceleration}, "
+              f"J {jerk}; {call.u64} cycles")
+        results.append(call.instructions)
+    return results
+
+
 def measure_sub_count(probe: Probe, n: int, top: int, seed: int = 17) -> list[int]:
     """Counts `probe_plan_sub_count` on `n` random moves of the class `pure_jerk` plans: a jerk of
     1 to 15 raw units, a distance log-uniform over 2 .. 2^17 raw units to a fractional position,
@@ -1156,6 +1181,11 @@ def main() -> int:
     parser.add_argument("--sub-count-seed", type=int, default=17,
                         help="the seed of the --sub-count-moves sample (default %(default)s, CI's; the "
                              "README's other samples are 99, 5, 1234 and 2026)")
+    parser.add_argument("--hard-moves", default="", metavar="I,J,...",
+                        help="random-move indices also planned and held to --plan-budget (the surveys' costliest)")
+    parser.add_argument("--hard-sub-counts", default="", metavar="D:V:A:J,...",
+                        help="moves from fractional positions (raw distance, velocity, acceleration, jerk) also "
+                             "planned and held to --plan-budget")
     parser.add_argument("--replan-moves", type=int, default=0,
                         help="random moves (the first N of --moves' list) planned in place into a "
                              "generator at rest, SCurve::set_parameters (reported; default %(default)s)")
@@ -1212,6 +1242,9 @@ def main() -> int:
         replans: list[int] = []
         if args.replan_moves:
             replans = measure_replans(probe, args.replan_moves, args.top)
+        hard: list[int] = []
+        if args.hard_moves or args.hard_sub_counts:
+            hard = measure_hard(probe, args.hard_moves, args.hard_sub_counts)
         sub_counts: list[int] = []
         if args.sub_count_moves:
             sub_counts = measure_sub_count(probe, args.sub_count_moves, args.top, args.sub_count_seed)
@@ -1348,6 +1381,8 @@ def main() -> int:
         return True
 
     planning_ok = within("planning", counts, args.plan_budget, f" (move {worst[0]})", "moves")
+    if hard:
+        planning_ok &= within("planning the surveys' costliest moves", hard, args.plan_budget, "", "moves")
     planning_ok &= within("Trapezoid set-up", setups, args.setup_budget, "", "moves")
     planning_ok &= within("an S-curve stop command", stops, args.stop_budget, "", "stops")
     # A restart plans a move: the planning budget, wherever restarts were measured.
