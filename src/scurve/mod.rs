@@ -43,12 +43,12 @@
 //! Planning takes a bounded number of integer operations, the same on every target (no floating
 //! point): at most eight shapes, each solved in closed form, a fixed number of notch-pair
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
-//! checked). Measured (see the README for the commands): 8,338 Cortex-M4 instructions median,
-//! 14,718 at worst over the first 1,000 random moves, 15,823 over 5,000, 16,300 over 20,000,
-//! 18,244 over 100,000 and 19,914 over the next 500,000, but 3 of the 500,000 after them over
-//! SPEC §16's 20,000 (worst 20,360; each with a jerk of one raw unit, whose first shapes'
-//! remainders do not fit); on the x86 development machine
-//! a few hundred nanoseconds median, under about 2 µs at worst.
+//! checked). Measured (see the README for the commands): 8,316 Cortex-M4 instructions median,
+//! 14,612 at worst over the first 1,000 random moves, 15,228 over 5,000, 16,318 over 20,000,
+//! 17,802 over 100,000 and 19,921 over the next 2,000,000, within SPEC §16's 20,000 (a sample:
+//! the costliest, with a jerk of one raw unit whose first shapes' remainders do not fit, are a
+//! few hundred under it); on the x86 development machine a few hundred nanoseconds median,
+//! under about 2 µs at worst.
 //! Tiny moves with a jerk of one or two raw units are read from a table of their fastest plans
 //! ([`tiny`]: no plan of fewer cycles exists); short moves where only a jerk of three raw units
 //! or more binds (mostly from fractional positions) are sums of unit volumes ([`volumes`]), and
@@ -56,10 +56,10 @@
 //! optimum cannot finish are planned by [`pure_jerk`] where only the jerk binds, else try up to
 //! 24 more pairs of ramps around it, then the same shapes with one unit's area more in the
 //! remainder, which costs more (random moves from fractional positions with a jerk of 1 to 15
-//! raw units: a sample of 20,000 within SPEC §16's 20,000, worst 18,208; CI's sample of 3,000
-//! worst 14,758; 2 of a survey of 500,000 over, worst 21,929, each with a jerk of one raw unit,
-//! whose main moves' rests two narrow pairs seldom take and one wide pair cannot). A step is at
-//! most 33 Cortex-M4 instructions (36 on the cycles after an abrupt stop), 18 on x86.
+//! raw units: a sample of 20,000 within SPEC §16's 20,000, worst 18,260; CI's sample of 3,000
+//! worst 14,743; a survey of 500,000 within it too, worst 19,911, a jerk of one raw unit whose
+//! main moves' rests two narrow pairs seldom take). A step is at most 33 Cortex-M4 instructions
+//! (36 on the cycles after an abrupt stop), 18 on x86.
 
 mod predict;
 mod products;
