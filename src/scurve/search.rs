@@ -432,29 +432,26 @@ fn fastest_fit(move_: &Move, found: &[Shape], out: &mut Schedule) -> bool {
             // plan is never longer than without this.
             if candidate.mix.units() == 1 {
                 let total = candidate.mix.a + candidate.mix.b + candidate.c;
-                // First this shape's other candidate, if as fast: with one unit of jerk, a
-                // first ramp's unit under the velocity is often the shorter kind of the shape
-                // before (a remainder that failed already), and its unit over it, with a
-                // velocity notch, lands where a later shape's would — before that later shape's
-                // and its neighbours' candidates are worked out and tried (random move
-                // 1449522, a jerk of one raw unit: one failed attempt and three shapes'
-                // candidates, about 3,300 Cortex-M4 instructions).
+                // A candidate as fast as this one at its own cruise, once (bit `2·shape + index`
+                // of `tried`).
+                let mut as_fast = |bit: u16, early: &Candidate| {
+                    if tried & bit != 0 || early.mix.a + early.mix.b + early.c > total {
+                        return false;
+                    }
+                    tried |= bit;
+                    complete_once(early, early.c, move_, out, &mut failed, false, &mut scratch)
+                };
+                // First this shape's other candidate: with one unit of jerk, a first ramp's
+                // unit under the velocity is often the shorter kind of the shape before (a
+                // remainder that failed already), and its unit over it, with a velocity notch,
+                // lands where a later shape's would — before that later shape's and its
+                // neighbours' candidates are worked out and tried (random move 1449522, a jerk
+                // of one raw unit: one failed attempt and three shapes' candidates, about 3,300
+                // Cortex-M4 instructions).
                 if let (0, Some(sibling)) = (k, ordered[1]) {
-                    let bit = 1 << (2 * i + 1);
-                    if sibling.mix.a + sibling.mix.b + sibling.c <= total {
-                        tried |= bit;
-                        if complete_once(
-                            sibling,
-                            sibling.c,
-                            move_,
-                            out,
-                            &mut failed,
-                            false,
-                            &mut scratch,
-                        ) {
-                            planned = true;
-                            break 'shapes;
-                        }
+                    if as_fast(1 << (2 * i + 1), sibling) {
+                        planned = true;
+                        break 'shapes;
                     }
                 }
                 for (j, later) in found[..len].iter().enumerate().skip(i + 1) {
@@ -463,23 +460,10 @@ fn fastest_fit(move_: &Move, found: &[Shape], out: &mut Schedule) -> bool {
                     }
                     let candidates = later.candidates(distance, limits);
                     for (m, early) in candidates.faster_first().into_iter().enumerate() {
-                        let bit = 1 << (2 * j + m);
                         let Some(early) = early else {
                             continue;
                         };
-                        if tried & bit != 0 || early.mix.a + early.mix.b + early.c > total {
-                            continue;
-                        }
-                        tried |= bit;
-                        if complete_once(
-                            early,
-                            early.c,
-                            move_,
-                            out,
-                            &mut failed,
-                            false,
-                            &mut scratch,
-                        ) {
+                        if as_fast(1 << (2 * j + m), early) {
                             planned = true;
                             break 'shapes;
                         }
