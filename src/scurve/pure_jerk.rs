@@ -1255,8 +1255,12 @@ impl Fit {
     }
 }
 
-/// At most this many [`Fit`]s of one width are kept (a main move has at most a handful).
-const MAX_FITS: usize = 12;
+/// At most this many [`Fit`]s of one width are kept: a main move [`plan`] makes has no more (six
+/// in closed form, [`Fits::fill_closed`]; with a first ramp of one cycle, whose fits
+/// [`Fits::fill_from_room`] finds, a test holds it for every main move of up to
+/// [`LONGEST`] + [`COUNTS`] cycles). The table is cleared once a plan: 12 a width cleared 432
+/// bytes more, 162 Cortex-M4 instructions.
+const MAX_FITS: usize = 6;
 
 /// The [`Fit`]s of a pair of each width from 1 to [`WIDEST`] in a main move (only the first
 /// `lens[w − 1]` of each width are its: the table is rewritten for each main move).
@@ -1407,6 +1411,17 @@ impl Fits {
                     }
                 }
             }
+            // None passed over in the main moves `plan` makes (see [`MAX_FITS`]).
+            debug_assert!(
+                len < MAX_FITS
+                    || starts[..n_starts]
+                        .iter()
+                        .flat_map(|&s| raises[..n_raises].iter().map(move |&r| (s, r)))
+                        .filter(|&(s, r)| Fit::of(s, r, w).is_some())
+                        .count()
+                        == MAX_FITS,
+                "more than {MAX_FITS} fits of width {w}"
+            );
             fits.lens[i] = len;
             fits.reach[i] = reach;
         }
@@ -1884,6 +1899,27 @@ mod tests {
             }
         }
         assert!(ruled_out > 100_000 && kept > 100_000, "{ruled_out} {kept}");
+    }
+
+    /// No main move [`plan`] makes with a first ramp of one cycle has more than [`MAX_FITS`]
+    /// fits of a width (the debug assertion in [`Fits::fill_from_room`]): every one of up to
+    /// [`LONGEST`] + [`COUNTS`] cycles, with early units and without.
+    #[test]
+    fn no_main_move_has_more_fits_than_the_table_holds() {
+        let mut most = [0; WIDEST as usize];
+        for (jerk, groups, total) in with_early_units(LONGEST + COUNTS, 2) {
+            if groups[0].a == 1 {
+                let mut profile = Profile::new(wide(jerk));
+                profile.set(&groups, total);
+                let mut fits = Fits::EMPTY;
+                fits.fill(&profile);
+                for (most, &len) in most.iter_mut().zip(&fits.lens) {
+                    *most = (*most).max(len);
+                }
+            }
+        }
+        // The table is full for some: the assertion had something to check.
+        assert_eq!(most, [MAX_FITS; WIDEST as usize]);
     }
 
     /// Every main move of `J` units all alike (no early units) of 4 to `most` cycles with a
