@@ -40,7 +40,7 @@
 //! [`MAX_WIDE_CHECKS`] candidates in all with a wide pair.
 
 use super::products::product;
-use super::remainder::{Notch, Placement};
+use super::remainder::{self, Notch, Placement};
 use super::roots::cube_root;
 use super::schedule::{Limits64, Schedule};
 use super::shape::{Group, MainMove};
@@ -309,13 +309,16 @@ fn plan(
         wide: [(0, 0, 0, 0, 0); MAX_WIDE],
         wides: 0,
         wide_checks: 0,
+        far: [(0, 0, 0, 0, 0, 0); MAX_FAR],
+        fars: 0,
         out,
     };
-    if narrow {
+    let planned = if narrow {
         plan_in::<u32>(&mut tries, counts)
     } else {
         plan_in::<u64>(&mut tries, counts)
-    }
+    };
+    planned || tries.far_rests()
 }
 
 /// [`plan`] with the search for main moves in `W`: each main move whose rest the pairs may take
@@ -394,6 +397,11 @@ struct Tries<'s> {
     wides: usize,
     /// Wide pairs checked so far (at most [`MAX_WIDE_CHECKS`]).
     wide_checks: u32,
+    /// The first [`MAX_FAR`] main moves, `(N, a, b, c, e, rest)`, whose rest is beyond what
+    /// narrow pairs are tried for ([`NEAR_REACH`]): tried with the search's pairs once every
+    /// cycle count has failed ([`Tries::far_rests`]).
+    far: [(u64, u64, u64, u64, u64, u64); MAX_FAR],
+    fars: usize,
     out: &'s mut Schedule,
 }
 
@@ -412,7 +420,12 @@ impl Tries<'_> {
         // scarcest ([`NEAR_REACH`]); a small rest, pairs of small spans, which units all
         // alike may have no room for ([`small_rest_may_fit`]); a rest between the bands of
         // spans the main move has room for, none ([`bands_may_take`]).
-        if NEAR_REACH.1 * rest < NEAR_REACH.0 * reach
+        let near = NEAR_REACH.1 * rest < NEAR_REACH.0 * reach;
+        if !near && self.fars < MAX_FAR {
+            self.far[self.fars] = (total, a, b, c, early, rest);
+            self.fars += 1;
+        }
+        if near
             && (early > 0 || small_rest_may_fit(rest, a, b, c))
             && bands_may_take(rest, (a, b, c), early > 0)
         {
@@ -509,6 +522,53 @@ impl Tries<'_> {
         None
     }
 
+    /// Tries the main moves kept for it ([`Self::far`]) with the search's notch pairs
+    /// ([`remainder::take`]: one pair, or two of consecutive widths `w` and `w + 1`, any width,
+    /// placed where [`Placement::fits`]' O(1) inequalities keep the limits), those whose rest
+    /// they likely take first ([`far_rest_likely`]), the others in their order: whether a plan
+    /// was built into `out`. [`plan`] calls it once every cycle count's candidates have failed,
+    /// so no plan found before changes.
+    ///
+    /// Narrow pairs are tried for rests under [`NEAR_REACH`] of their reach; a rest beyond it
+    /// needs wider ones. Where every cycle count's candidates failed, the move went to the
+    /// search, which found plans with pairs of widths up to 26 — after this module's own
+    /// attempts, 10,000 to 20,000 Cortex-M4 instructions more: over a survey of 1,000,000 moves
+    /// from fractional positions (seeds 121–140), 5 moves, 4 of them over SPEC §16's 20,000
+    /// (up to 29,518). The search's pairs take a kept main move's rest in each of them, the
+    /// first or the second tried, in as many cycles as the search's plan or fewer (120,075 raw
+    /// units with a jerk of 7: 82, where the search's took 84).
+    #[inline(never)]
+    fn far_rests(&mut self) -> bool {
+        // Those whose rest is likely taken first ([`far_rest_likely`]), then the others.
+        let likely = (0..self.fars).fold(0u8, |likely, i| {
+            let (total, a, _, _, _, rest) = self.far[i];
+            likely | u8::from(far_rest_likely(rest, total, reach(total, a))) << i
+        });
+        for order in [likely, !likely] {
+            for i in (0..self.fars).filter(|&i| order >> i & 1 != 0) {
+                let (_, a, b, c, early, rest) = self.far[i];
+                let groups = self.groups((a, b, c), early);
+                let main = MainMove::of_groups(&groups);
+                let bounds = main.bounds();
+                let mut placement = Placement::default();
+                // No units given back: the main move is the one the rest is of.
+                let taken = remainder::take(
+                    rest,
+                    &main,
+                    &bounds,
+                    &mut placement,
+                    self.limits.jerk,
+                    (0, 0),
+                    false,
+                );
+                if taken.is_some() {
+                    return self.build_main(&main, &placement, (a, b));
+                }
+            }
+        }
+        false
+    }
+
     /// `J − e` units of `tb(a, b, c)` and `e` of `tb(a, b, c − 1)`.
     fn groups(&self, (a, b, c): (u64, u64, u64), early: u64) -> [Group; 2] {
         [
@@ -531,15 +591,23 @@ impl Tries<'_> {
     fn build(&mut self, groups: &[Group; 2], placement: &Placement) -> bool {
         // The main move only for the plan found (most candidates fail): a [`MainMove`] is a
         // few hundred bytes to clear and fill.
-        let main = MainMove::of_groups(groups);
-        let (a, b) = (groups[0].a, groups[0].b);
-        let built = self.out.build(&main, placement, self.direction, (a, b));
-        // Checked cycle by cycle by `Profile::fits`; the tests run with debug assertions, and
-        // every plan made here is replayed as well.
+        self.build_main(
+            &MainMove::of_groups(groups),
+            placement,
+            (groups[0].a, groups[0].b),
+        )
+    }
+
+    /// Builds the plan of `main`, whose units' ramps are `(a, b)`, less `placement` into `out`
+    /// (whether it was built).
+    fn build_main(&mut self, main: &MainMove, placement: &Placement, (a, b): (u64, u64)) -> bool {
+        let built = self.out.build(main, placement, self.direction, (a, b));
+        // Checked by `Profile::fits` (the search's pairs by `Placement::fits`); the tests run
+        // with debug assertions, and every plan made here is replayed as well.
         debug_assert!(
             self.out.lands(self.direction, self.limits, self.distance),
             "a plan that breaks a limit or misses the distance: {:?}",
-            (&main, placement, self.distance, self.limits)
+            (main, placement, self.distance, self.limits)
         );
         built
     }
@@ -561,6 +629,21 @@ impl Tries<'_> {
 /// with one unit. (Tried last, after every cycle count's narrow pairs, they cost the moves that
 /// need them 2,000 to 7,000 more and planned fewer: 15,095 / J 1 12,386 → 19,833.)
 const WIDEST_ALONE: i32 = 12;
+
+/// Main moves kept for the search's pairs ([`Tries::far_rests`]): the cost of a move whose
+/// every candidate fails stays bounded (a try that fails is 1,500 to 4,000 Cortex-M4
+/// instructions: the main move and its bounds written, then `remainder::take`'s placements).
+const MAX_FAR: usize = 4;
+
+/// Whether the search's pairs likely take `rest` off a main move of `total` cycles whose narrow
+/// pairs' [`reach`] is `reach`: a rest at least nine tenths of that reach (nearer, two narrow
+/// pairs' widths are as likely) and under a third of `total²` (two pairs take less than
+/// `total²/2`, and near it seldom fit). Of the 4,116 main moves kept over CI's sample of moves
+/// from fractional positions and the 20,000 seeded 2026, the pairs took 2,815 of the 2,974
+/// likely ones and 410 of the 1,142 others.
+fn far_rest_likely(rest: u64, total: u64, reach: u64) -> bool {
+    10 * rest >= 9 * reach && 3 * rest < total * total
+}
 
 /// Main moves kept per cycle count for a wide pair ([`Tries::wide_pairs`]): the cost of a count
 /// whose wide pairs fail stays bounded (each main move costs its fits of each width that
@@ -2225,6 +2308,37 @@ mod tests {
             );
         }
         assert_eq!(6 * 17 * 24 * 42 + 17 * 24 * 41 - 7 * 37, 119_285);
+    }
+
+    /// Moves from fractional positions whose every main move's rest is beyond what narrow and
+    /// single wide pairs take, on all four cycle counts (they went on to the search, 20,608 to
+    /// 29,518 Cortex-M4 instructions for the first four): the search's pairs of consecutive
+    /// widths take a kept main move's ([`Tries::far_rests`]), within `⌊∛(32·D/J)⌋ + 3` cycles
+    /// and replayed exactly (the search had planned 120,075 raw units in 84 cycles; here 82).
+    #[test]
+    fn far_rests_take_the_search_pairs() {
+        for (distance, jerk) in [
+            (82_837, 2),
+            (124_655, 3),
+            (121_941, 1),
+            (120_075, 7),
+            (120_093, 7),
+        ] {
+            let mut out = Schedule::EMPTY;
+            assert!(
+                first(distance, 1, wide(jerk), &mut out),
+                "{distance}, J {jerk}"
+            );
+            let replay = out.replay(1, wide(jerk));
+            assert!(replay.within_limits, "{distance}, J {jerk}");
+            assert_eq!(replay.distance, i128::from(distance));
+            let floor = cube_root(32 * distance / jerk);
+            let total = out.plan.total;
+            assert!(
+                total <= floor + 3,
+                "{distance}, J {jerk}: {total} > {floor} + 3"
+            );
+        }
     }
 
     /// Where the first span of the right residue cannot be used — a pair as wide as its span,
