@@ -523,7 +523,7 @@ impl Tries<'_> {
     }
 
     /// Tries the main moves kept for it ([`Self::far`]) with the search's notch pairs
-    /// ([`remainder::take`]: one pair, or two of consecutive widths `w` and `w + 1`, any width,
+    /// ([`remainder::take_exactly`]: one pair, or two of consecutive widths `w` and `w + 1`, any width,
     /// placed where [`Placement::fits`]' O(1) inequalities keep the limits), those whose rest
     /// they likely take first ([`far_rest_likely`]), the others in their order: whether a plan
     /// was built into `out`. [`plan`] calls it once every cycle count's candidates have failed,
@@ -552,16 +552,7 @@ impl Tries<'_> {
                 let bounds = main.bounds();
                 let mut placement = Placement::default();
                 // No units given back: the main move is the one the rest is of.
-                let taken = remainder::take(
-                    rest,
-                    &main,
-                    &bounds,
-                    &mut placement,
-                    self.limits.jerk,
-                    (0, 0),
-                    false,
-                );
-                if taken.is_some() {
+                if remainder::take_exactly(rest, &main, &bounds, &mut placement, self.limits.jerk) {
                     return self.build_main(&main, &placement, (a, b));
                 }
             }
