@@ -43,9 +43,9 @@
 //! Planning takes a bounded number of integer operations, the same on every target (no floating
 //! point): at most eight shapes, each solved in closed form, a fixed number of notch-pair
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
-//! checked). Measured (see the README for the commands): 8,316 Cortex-M4 instructions median,
-//! 14,612 at worst over the first 1,000 random moves, 15,228 over 5,000, 16,318 over 20,000,
-//! 17,802 over 100,000 and 19,921 over the next 3,000,000, within SPEC §16's 20,000 (a sample:
+//! checked). Measured (see the README for the commands): 8,319 Cortex-M4 instructions median,
+//! 14,615 at worst over the first 1,000 random moves, 15,233 over 5,000, 16,321 over 20,000,
+//! 17,826 over 100,000 and 19,924 over the next 3,000,000, within SPEC §16's 20,000 (a sample:
 //! the costliest, with a jerk of one raw unit whose first shapes' remainders do not fit, are a
 //! few hundred under it); on the x86 development machine a few hundred nanoseconds median,
 //! under about 2 µs at worst.
@@ -56,9 +56,10 @@
 //! optimum cannot finish are planned by [`pure_jerk`] where only the jerk binds, else try up to
 //! 24 more pairs of ramps around it, then the same shapes with one unit's area more in the
 //! remainder, which costs more (random moves from fractional positions with a jerk of 1 to 15
-//! raw units: a sample of 20,000 within SPEC §16's 20,000, worst 18,260; CI's sample of 3,000
-//! worst 14,743; one survey of 500,000 within it, worst 19,911, another 5 over, worst 23,018:
-//! a jerk of one or two raw units whose main moves' rests two narrow pairs seldom take). A step
+//! raw units: a sample of 20,000 within SPEC §16's 20,000, worst 16,751; CI's sample of 3,000
+//! worst 14,924; surveys of 3,000,000 within it, worst 18,913, where before 2026-12-07's changes
+//! to [`pure_jerk`] 9 of 1,500,000 were over, up to 29,518: main moves whose rest lies between
+//! the bands of spans narrow pairs take, and moves whose every rest is beyond them). A step
 //! is at most 33 Cortex-M4 instructions (36 on the cycles after an abrupt stop), 18 on x86.
 
 mod predict;
