@@ -45,7 +45,7 @@
 //! placements per shape, one schedule built (and, in builds with debug assertions, replayed and
 //! checked). Measured (see the README for the commands): 8,319 Cortex-M4 instructions median,
 //! 14,615 at worst over the first 1,000 random moves, 15,233 over 5,000, 16,321 over 20,000,
-//! 17,826 over 100,000 and 19,924 over the next 3,000,000, within SPEC §16's 20,000 (a sample:
+//! 17,826 over 100,000 and 19,924 over the next 4,000,000, within SPEC §16's 20,000 (a sample:
 //! the costliest, with a jerk of one raw unit whose first shapes' remainders do not fit, are a
 //! few hundred under it); on the x86 development machine a few hundred nanoseconds median,
 //! under about 2 µs at worst.
