@@ -523,36 +523,13 @@ const WIDTH_TRIES: u64 = 1;
 /// `left / (2·span + 1)` and one below it, and half and all of the first ramp (where short moves
 /// have room). With `with_unit`, the widths are estimated for `left + area` instead (a second
 /// search's, after the first found nothing).
-pub(super) fn take(
-    left: u64,
-    main: &MainMove,
-    bounds: &Bounds,
-    placed: &mut Placement,
-    jerk_limit: u64,
-    units: (u64, u64),
-    with_unit: bool,
-) -> Option<u64> {
-    take_as::<true>(left, main, bounds, placed, jerk_limit, units, with_unit)
-}
-
-/// [`take`] with no units to give back: whether pairs take exactly `left` off `main` (added to
-/// `placed`). For `super::pure_jerk`, whose main moves' rests are their own. A copy of its own
-/// (`UNITS` false): the search's stays its one caller's, inlined into `complete` as before (one
-/// copy with two callers was inlined into neither: about 40 Cortex-M4 instructions more a random
-/// move, up to 280 on the costliest).
-pub(super) fn take_exactly(
-    left: u64,
-    main: &MainMove,
-    bounds: &Bounds,
-    placed: &mut Placement,
-    jerk_limit: u64,
-) -> bool {
-    take_as::<false>(left, main, bounds, placed, jerk_limit, (0, 0), false).is_some()
-}
-
-/// [`take`], with units to give back only if `UNITS` (else `q` is 0).
-#[inline(always)]
-fn take_as<const UNITS: bool>(
+///
+/// `UNITS` false gives no units back (`q` is 0, `units` and `with_unit` unread):
+/// [`take_exactly`]. The search calls `take::<true>` alone, `super::pure_jerk` the other copy
+/// alone: with one copy for both, the compiler inlined it into neither, and the search's
+/// `complete` paid for the call (about 40 Cortex-M4 instructions more a random move, up to 280
+/// on the costliest).
+pub(super) fn take<const UNITS: bool>(
     left: u64,
     main: &MainMove,
     bounds: &Bounds,
@@ -591,6 +568,18 @@ fn take_as<const UNITS: bool>(
     } else {
         remainder.take_in::<u64, UNITS>(placed)
     }
+}
+
+/// [`take`] with no units to give back: whether pairs take exactly `left` off `main` (added to
+/// `placed`). For `super::pure_jerk`, whose main moves' rests are their own.
+pub(super) fn take_exactly(
+    left: u64,
+    main: &MainMove,
+    bounds: &Bounds,
+    placed: &mut Placement,
+    jerk_limit: u64,
+) -> bool {
+    take::<false>(left, main, bounds, placed, jerk_limit, (0, 0), false).is_some()
 }
 
 /// What [`take`] estimates the widths of two pairs for: `left`, or with `with_unit` one unit's

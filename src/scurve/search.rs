@@ -687,7 +687,7 @@ fn complete(
     if notch > 0 && !place_velocity_notch(placement, notch, c, main, &bounds, jerk) {
         return false;
     }
-    let Some(given) = remainder::take(
+    let Some(given) = remainder::take::<true>(
         over,
         main,
         &bounds,
