@@ -1921,25 +1921,36 @@ mod tests {
         let (mut ruled_out, mut kept) = (0, 0);
         for (jerk, groups, total) in units_all_alike(48) {
             let Group { a, b, c, .. } = groups[0];
-            let mut profile = Profile::new(wide(jerk));
-            let mut fits = Fits::EMPTY;
+            let (mut profile, fits) = filled(jerk, &groups, total);
             for rest in 1..a {
                 if small_rest_may_fit(rest, a, b, c) {
                     kept += 1;
                     continue;
                 }
                 ruled_out += 1;
-                profile.set(&groups, total);
-                fits.fill(&profile);
-                for apart in [true, false] {
-                    let mut checks = 0;
-                    let taken = profile.take(rest, apart, &mut checks, &fits);
-                    assert!(taken.is_none(), "{groups:?} {rest}");
-                    assert_eq!(checks, 0, "{groups:?} {rest}");
-                }
+                assert_takes_nothing(&mut profile, &fits, rest, &groups);
             }
         }
         assert!(ruled_out > 1_000 && kept > 1_000, "{ruled_out} {kept}");
+    }
+
+    /// The room of `J` = `jerk` units as `groups`, `total` cycles, and its fits.
+    fn filled(jerk: u64, groups: &[Group; 2], total: u64) -> (Profile, Fits) {
+        let mut profile = Profile::new(wide(jerk));
+        profile.set(groups, total);
+        let mut fits = Fits::EMPTY;
+        fits.fill(&profile);
+        (profile, fits)
+    }
+
+    /// Neither pass of [`Profile::take`] finds pairs for `rest` in `fits`, or checks a candidate.
+    fn assert_takes_nothing(profile: &mut Profile, fits: &Fits, rest: u64, groups: &[Group; 2]) {
+        for apart in [true, false] {
+            let mut checks = 0;
+            let taken = profile.take(rest, apart, &mut checks, fits);
+            assert!(taken.is_none(), "{groups:?} {rest}");
+            assert_eq!(checks, 0, "{groups:?} {rest}");
+        }
     }
 
     /// Where [`bands_may_take`] rules a rest out, [`Profile::take`] finds no candidate for it,
@@ -1954,22 +1965,14 @@ mod tests {
             if a < 2 {
                 continue;
             }
-            let mut profile = Profile::new(wide(jerk));
-            profile.set(&groups, total);
-            let mut fits = Fits::EMPTY;
-            fits.fill(&profile);
+            let (mut profile, fits) = filled(jerk, &groups, total);
             for rest in 1..=reach(total, a) {
                 if bands_may_take(rest, (a, b, c), early.count > 0) {
                     kept += 1;
                     continue;
                 }
                 ruled_out += 1;
-                for apart in [true, false] {
-                    let mut checks = 0;
-                    let taken = profile.take(rest, apart, &mut checks, &fits);
-                    assert!(taken.is_none(), "{groups:?} {rest}");
-                    assert_eq!(checks, 0, "{groups:?} {rest}");
-                }
+                assert_takes_nothing(&mut profile, &fits, rest, &groups);
             }
         }
         assert!(ruled_out > 100_000 && kept > 100_000, "{ruled_out} {kept}");
@@ -1983,10 +1986,7 @@ mod tests {
         let mut most = [0; WIDEST as usize];
         for (jerk, groups, total) in with_early_units(LONGEST + COUNTS, 2) {
             if groups[0].a == 1 {
-                let mut profile = Profile::new(wide(jerk));
-                profile.set(&groups, total);
-                let mut fits = Fits::EMPTY;
-                fits.fill(&profile);
+                let (_, fits) = filled(jerk, &groups, total);
                 for (most, &len) in most.iter_mut().zip(&fits.lens) {
                     *most = (*most).max(len);
                 }
