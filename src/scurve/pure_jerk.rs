@@ -309,7 +309,7 @@ fn plan(
         wide: [(0, 0, 0, 0, 0); MAX_WIDE],
         wides: 0,
         wide_checks: 0,
-        far: [(0, 0, 0, 0, 0, 0); MAX_FAR],
+        far: [(0, 0, 0, 0, 0); MAX_FAR],
         fars: 0,
         out,
     };
@@ -397,10 +397,10 @@ struct Tries<'s> {
     wides: usize,
     /// Wide pairs checked so far (at most [`MAX_WIDE_CHECKS`]).
     wide_checks: u32,
-    /// The first [`MAX_FAR`] main moves, `(N, a, b, c, e, rest)`, whose rest is beyond what
+    /// The first [`MAX_FAR`] main moves, `(a, b, c, e, rest)`, whose rest is beyond what
     /// narrow pairs are tried for ([`NEAR_REACH`]): tried with the search's pairs once every
     /// cycle count has failed ([`Tries::far_rests`]).
-    far: [(u64, u64, u64, u64, u64, u64); MAX_FAR],
+    far: [(u64, u64, u64, u64, u64); MAX_FAR],
     fars: usize,
     out: &'s mut Schedule,
 }
@@ -422,7 +422,7 @@ impl Tries<'_> {
         // spans the main move has room for, none ([`bands_may_take`]).
         let near = NEAR_REACH.1 * rest < NEAR_REACH.0 * reach;
         if !near && self.fars < MAX_FAR {
-            self.far[self.fars] = (total, a, b, c, early, rest);
+            self.far[self.fars] = (a, b, c, early, rest);
             self.fars += 1;
         }
         if near
@@ -541,12 +541,13 @@ impl Tries<'_> {
     fn far_rests(&mut self) -> bool {
         // Those whose rest is likely taken first ([`far_rest_likely`]), then the others.
         let likely = (0..self.fars).fold(0u8, |likely, i| {
-            let (total, a, _, _, _, rest) = self.far[i];
+            let (a, b, c, _, rest) = self.far[i];
+            let total = a + b + c;
             likely | u8::from(far_rest_likely(rest, total, reach(total, a))) << i
         });
         for order in [likely, !likely] {
             for i in (0..self.fars).filter(|&i| order >> i & 1 != 0) {
-                let (_, a, b, c, early, rest) = self.far[i];
+                let (a, b, c, early, rest) = self.far[i];
                 let groups = self.groups((a, b, c), early);
                 let main = MainMove::of_groups(&groups);
                 let bounds = main.bounds();
