@@ -57,7 +57,7 @@
 //! 24 more pairs of ramps around it, then the same shapes with one unit's area more in the
 //! remainder, which costs more (random moves from fractional positions with a jerk of 1 to 15
 //! raw units: a sample of 20,000 within SPEC §16's 20,000, worst 16,751; CI's sample of 3,000
-//! worst 14,924; surveys of 3,000,000 within it, worst 18,913, where before 2026-12-07's changes
+//! worst 14,893; surveys of 3,000,000 within it, worst 18,913, where before 2026-12-07's changes
 //! to [`pure_jerk`] 9 of 1,500,000 were over, up to 29,518: main moves whose rest lies between
 //! the bands of spans narrow pairs take, and moves whose every rest is beyond them). A step
 //! is at most 33 Cortex-M4 instructions (36 on the cycles after an abrupt stop), 18 on x86.
